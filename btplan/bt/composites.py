@@ -1,0 +1,71 @@
+"""Sequence and Fallback, reactive (the paper's semantics) or with memory (BT.CPP's).
+
+Reactive (memory=False, the default; BT.CPP ReactiveSequence/ReactiveFallback):
+every tick starts again at the first child.
+  Sequence: a child's SUCCESS ticks the next child; FAILURE or RUNNING is returned at
+  once. Fallback: a child's FAILURE ticks the next child; SUCCESS or RUNNING is returned
+  at once. In both, a child that was RUNNING on an earlier tick and is not the child that
+  decided this tick's outcome is halted, so that an action the tree no longer reaches
+  learns it was stopped (the cube slipping out of the gripper halts MoveTo).
+
+With memory (memory=True; BT.CPP Sequence/Fallback): a RUNNING child is resumed on the
+next tick without re-ticking the children before it. The index is reset when the
+node returns SUCCESS or FAILURE, and when it is halted.
+"""
+
+from __future__ import annotations
+
+from btplan.bt.node import Composite, Node
+from btplan.bt.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
+from btplan.bt.world import World
+
+
+class _Control(Composite):
+    """Shared tick loop; `stop_on` is the child status that ends the loop early."""
+
+    __slots__ = ("memory", "_current")
+    stop_on: Status = FAILURE
+
+    def __init__(self, children: list[Node] | None = None, name: str = "", memory: bool = False):
+        super().__init__(children, name)
+        self.memory = memory
+        self._current = 0
+
+    def tick(self, world: World) -> Status:
+        children = self._children
+        start = self._current if self.memory else 0
+        stop_on = self.stop_on
+        for i in range(start, len(children)):
+            status = children[i].tick(world)
+            if status is RUNNING or status is stop_on:
+                self._halt_after(i, world)
+                self._current = i if status is RUNNING else 0
+                self.status = status
+                return status
+        self._current = 0
+        self.status = status = SUCCESS if stop_on is FAILURE else FAILURE
+        return status
+
+    def _halt_after(self, index: int, world: World) -> None:
+        """Halt the children right of the deciding one that are still active."""
+        for child in self._children[index + 1 :]:
+            if child.status is not IDLE:
+                child.halt(world)
+
+    def halt(self, world: World) -> None:
+        self._current = 0
+        super().halt(world)
+
+
+class Sequence(_Control):
+    """Ticks children left to right while they succeed (the paper's "->")."""
+
+    __slots__ = ()
+    stop_on = FAILURE
+
+
+class Fallback(_Control):
+    """Ticks children left to right while they fail (the paper's "?")."""
+
+    __slots__ = ()
+    stop_on = SUCCESS

@@ -1,0 +1,68 @@
+"""Condition and Action leaves: the only nodes that talk to the world.
+
+A leaf is one grounded predicate or action: `ident` is the predicate or action
+template name (`holding`, `Pick`), `args` the grounded arguments and `ports` the
+parameter names they bind, which is what the XML export writes as port attributes.
+"""
+
+from __future__ import annotations
+
+from btplan.bt.node import Node
+from btplan.bt.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
+from btplan.bt.world import LeafKey, World
+
+
+def leaf_label(ident: str, args: tuple[str, ...]) -> str:
+    return f"{ident}({', '.join(args)})"
+
+
+class Leaf(Node):
+    __slots__ = ("ident", "args", "ports", "key")
+
+    def __init__(
+        self,
+        ident: str,
+        args: tuple[str, ...] = (),
+        ports: tuple[str, ...] | None = None,
+        name: str = "",
+    ) -> None:
+        super().__init__(name or leaf_label(ident, args))
+        self.ident = ident
+        self.args = tuple(args)
+        self.ports = tuple(ports) if ports is not None else tuple(f"arg{i}" for i in range(len(args)))
+        if len(self.ports) != len(self.args):
+            raise ValueError(f"{self.name}: {len(self.ports)} port names for {len(self.args)} arguments")
+        self.key: LeafKey = (ident, self.args)
+
+
+class Condition(Leaf):
+    """SUCCESS when the world says the condition holds, FAILURE otherwise; never RUNNING."""
+
+    __slots__ = ()
+
+    def tick(self, world: World) -> Status:
+        self.status = status = SUCCESS if world.check(self.key) else FAILURE
+        return status
+
+
+class Action(Leaf):
+    """Starts the grounded action on the first tick that reaches it, then steps it.
+
+    Returns what the world returns. When halted while RUNNING, the world is told, so a
+    controller can stop the robot; the next tick that reaches it starts it afresh.
+    """
+
+    __slots__ = ()
+
+    def tick(self, world: World) -> Status:
+        if self.status is RUNNING:
+            status = world.step(self.key)
+        else:
+            status = world.start(self.key)
+        self.status = status
+        return status
+
+    def halt(self, world: World) -> None:
+        if self.status is RUNNING:
+            world.halt(self.key)
+        self.status = IDLE

@@ -1,0 +1,92 @@
+"""The base of every tree node: a name, a last status, a parent link, tick and halt."""
+
+from __future__ import annotations
+
+from btplan.bt.status import IDLE, Status
+from btplan.bt.world import World
+
+
+class Node:
+    """A node of a Behavior Tree.
+
+    `status` is the status of the last tick that reached the node (IDLE before the
+    first one and after a halt). `parent` is kept so the planner can move subtrees
+    (IncreasePriority) without searching the whole tree.
+    """
+
+    __slots__ = ("name", "status", "parent")
+
+    def __init__(self, name: str = "") -> None:
+        self.name = name
+        self.status: Status = IDLE
+        self.parent: Composite | None = None
+
+    @property
+    def children(self) -> list[Node]:
+        return []
+
+    def tick(self, world: World) -> Status:
+        raise NotImplementedError
+
+    def halt(self, world: World) -> None:
+        """Stop whatever this node has RUNNING; a no-op on a node that is not running."""
+        self.status = IDLE
+
+    def walk(self) -> list[Node]:
+        """This node and all below it, depth first, left to right."""
+        out: list[Node] = []
+        stack: list[Node] = [self]
+        while stack:
+            node = stack.pop()
+            out.append(node)
+            stack.extend(reversed(node.children))
+        return out
+
+
+class Composite(Node):
+    """A control node with an ordered list of children."""
+
+    __slots__ = ("_children",)
+
+    def __init__(self, children: list[Node] | None = None, name: str = "") -> None:
+        super().__init__(name)
+        self._children: list[Node] = []
+        for child in children or []:
+            self.append(child)
+
+    @property
+    def children(self) -> list[Node]:
+        return self._children
+
+    def append(self, child: Node) -> None:
+        self.insert(len(self._children), child)
+
+    def insert(self, index: int, child: Node) -> None:
+        if child.parent is not None:
+            raise ValueError(f"node {child.name!r} already has a parent")
+        child.parent = self
+        self._children.insert(index, child)
+
+    def remove(self, child: Node) -> int:
+        """Detach `child` and return the index it had."""
+        index = self.index_of(child)
+        del self._children[index]
+        child.parent = None
+        return index
+
+    def replace(self, old: Node, new: Node) -> None:
+        """Put `new` where `old` was; the planner's Substitute (Algorithm 2, line 10)."""
+        index = self.remove(old)
+        self.insert(index, new)
+
+    def index_of(self, child: Node) -> int:
+        for i, c in enumerate(self._children):
+            if c is child:
+                return i
+        raise ValueError(f"{child.name!r} is not a child of {self.name!r}")
+
+    def halt(self, world: World) -> None:
+        for child in self._children:
+            if child.status is not IDLE:
+                child.halt(world)
+        self.status = IDLE

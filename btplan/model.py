@@ -1,0 +1,312 @@
+"""The planning models every layer shares: domains, problems and their grounded forms.
+
+Both input languages (btplan's own and PDDL) produce these models, so everything
+downstream works on either. They are frozen so that a parsed domain can be shared
+and cached safely. Grounded atoms are plain named tuples: the planner and the
+worlds hash and compare millions of them, and a tuple does that at C speed.
+
+This module imports nothing else from btplan.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from functools import cached_property
+from typing import NamedTuple
+
+from pydantic import BaseModel, ConfigDict
+
+ROOT_TYPE = "object"
+"""Every type without a declared parent derives from this one."""
+
+EQUALITY = "="
+"""The built-in predicate of `a == b` (and, negated, `a != b`)."""
+
+WILDCARD = "_"
+"""In a negative postcondition, `_` matches any object: `not near(_)` clears them all."""
+
+
+class Frozen(BaseModel):
+    """Base of the input-side models: immutable and strict about unknown fields."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+
+class TypeDef(Frozen):
+    """A declared type; `parent` is None only for the root type."""
+
+    name: str
+    parent: str | None = ROOT_TYPE
+
+
+class TypedName(Frozen):
+    """An object or constant with its type."""
+
+    name: str
+    type: str = ROOT_TYPE
+
+
+class Parameter(Frozen):
+    """A typed parameter of a predicate or action template.
+
+    A `refined` parameter is not chosen by the planner among the objects: the world
+    backend supplies it (a trajectory, a grasp pose), as the paper's RefineActions does.
+    """
+
+    name: str
+    type: str = ROOT_TYPE
+    refined: bool = False
+
+
+class Predicate(Frozen):
+    name: str
+    parameters: tuple[Parameter, ...] = ()
+
+    @property
+    def arity(self) -> int:
+        return len(self.parameters)
+
+
+class Literal(Frozen):
+    """A possibly negated atom whose arguments are parameter names or constants."""
+
+    predicate: str
+    args: tuple[str, ...] = ()
+    positive: bool = True
+
+    def __str__(self) -> str:
+        if self.predicate == EQUALITY:
+            op = "==" if self.positive else "!="
+            return f"{self.args[0]} {op} {self.args[1]}"
+        text = f"{self.predicate}({', '.join(self.args)})"
+        return text if self.positive else f"not {text}"
+
+
+class ActionTemplate(Frozen):
+    """An action template with its pre- and postconditions (the paper's Table I).
+
+    `constraints` ("where" in the language) restrict the bindings of parameters but are
+    not conditions the tree checks at run time: static relations such as which
+    trajectory leads where, and equalities. `duration` is in ticks of the symbolic world.
+    """
+
+    name: str
+    parameters: tuple[Parameter, ...] = ()
+    constraints: tuple[Literal, ...] = ()
+    preconditions: tuple[Literal, ...] = ()
+    effects: tuple[Literal, ...] = ()
+    cost: float = 1.0
+    duration: int = 1
+
+    @property
+    def add_effects(self) -> tuple[Literal, ...]:
+        return tuple(e for e in self.effects if e.positive)
+
+    @property
+    def delete_effects(self) -> tuple[Literal, ...]:
+        return tuple(e for e in self.effects if not e.positive)
+
+
+class Domain(Frozen):
+    name: str
+    requirements: tuple[str, ...] = ()
+    types: tuple[TypeDef, ...] = (TypeDef(name=ROOT_TYPE, parent=None),)
+    constants: tuple[TypedName, ...] = ()
+    predicates: tuple[Predicate, ...] = ()
+    actions: tuple[ActionTemplate, ...] = ()
+
+    @cached_property
+    def type_parents(self) -> Mapping[str, str | None]:
+        return {t.name: t.parent for t in self.types}
+
+    @cached_property
+    def predicate_map(self) -> Mapping[str, Predicate]:
+        return {p.name: p for p in self.predicates}
+
+    @cached_property
+    def action_map(self) -> Mapping[str, ActionTemplate]:
+        return {a.name: a for a in self.actions}
+
+    def ancestors(self, type_name: str) -> tuple[str, ...]:
+        """The type itself, then its parents up to the root."""
+        chain: list[str] = []
+        current: str | None = type_name
+        while current is not None and current not in chain:
+            chain.append(current)
+            current = self.type_parents.get(current)
+        return tuple(chain)
+
+    def is_subtype(self, type_name: str, of: str) -> bool:
+        return of in self.ancestors(type_name)
+
+    @cached_property
+    def changed_predicates(self) -> frozenset[str]:
+        """Predicates some action can make true or false; the others are static."""
+        return frozenset(e.predicate for a in self.actions for e in a.effects)
+
+
+class Problem(Frozen):
+    """Objects, initial facts and goal conditions; the goal is ground literals."""
+
+    name: str
+    domain: str
+    objects: tuple[TypedName, ...] = ()
+    init: tuple[Literal, ...] = ()
+    goal: tuple[Literal, ...] = ()
+
+
+class Task(Frozen):
+    """A domain together with one of its problems: what planning and acting need."""
+
+    domain: Domain
+    problem: Problem
+
+    @cached_property
+    def object_types(self) -> Mapping[str, str]:
+        """Every object and constant name mapped to its declared type."""
+        table = {c.name: c.type for c in self.domain.constants}
+        table.update({o.name: o.type for o in self.problem.objects})
+        return table
+
+    def objects_of(self, type_name: str) -> tuple[str, ...]:
+        """Objects whose type is `type_name` or one of its subtypes, sorted by name."""
+        return tuple(
+            sorted(n for n, t in self.object_types.items() if self.domain.is_subtype(t, type_name))
+        )
+
+    @cached_property
+    def initial_state(self) -> frozenset[Atom]:
+        return frozenset(Atom(lit.predicate, lit.args) for lit in self.problem.init)
+
+    @cached_property
+    def goal_literals(self) -> tuple[GroundLiteral, ...]:
+        return tuple(GroundLiteral(Atom(g.predicate, g.args), g.positive) for g in self.problem.goal)
+
+
+# --- grounded forms -------------------------------------------------------------------------
+
+
+class Atom(NamedTuple):
+    """A ground fact, e.g. Atom("holding", ("cube",)).
+
+    Equal to, and hashed like, the plain tuple ("holding", ("cube",)): behavior-tree
+    leaves use that tuple as their key, so a world can look leaves up in a set of atoms.
+    """
+
+    predicate: str
+    args: tuple[str, ...]
+
+    def __str__(self) -> str:
+        return f"{self.predicate}({', '.join(self.args)})"
+
+
+class GroundLiteral(NamedTuple):
+    atom: Atom
+    positive: bool = True
+
+    def holds(self, state: frozenset[Atom] | set[Atom]) -> bool:
+        return (self.atom in state) is self.positive
+
+    def __str__(self) -> str:
+        return str(self.atom) if self.positive else f"not {self.atom}"
+
+
+class GroundAction(Frozen):
+    """An action template with every parameter bound to an object or a refined value.
+
+    `delete_patterns` hold negative effects with wildcards (`not near(_)`); they delete
+    every matching atom before `add` is applied, which is how a state variable such
+    as the robot's position is written in STRIPS terms.
+    """
+
+    name: str
+    args: tuple[str, ...] = ()
+    port_names: tuple[str, ...] = ()
+    preconditions: tuple[GroundLiteral, ...] = ()
+    add: tuple[Atom, ...] = ()
+    delete: tuple[Atom, ...] = ()
+    delete_patterns: tuple[Atom, ...] = ()
+    cost: float = 1.0
+    duration: int = 1
+
+    @property
+    def key(self) -> tuple[str, tuple[str, ...]]:
+        return (self.name, self.args)
+
+    def applicable(self, state: frozenset[Atom] | set[Atom]) -> bool:
+        return all(p.holds(state) for p in self.preconditions)
+
+    def deletes(self, atom: Atom) -> bool:
+        """True when applying this action makes `atom` false (unless it also adds it)."""
+        if atom in self.add:
+            return False
+        return atom in self.delete or any(matches(p, atom) for p in self.delete_patterns)
+
+    def apply(self, state: frozenset[Atom]) -> frozenset[Atom]:
+        """Delete first, then add: an effect list `not near(_), near(x)` ends with near(x)."""
+        kept = (a for a in state if a not in self.delete and not self._pattern_hit(a))
+        return frozenset(kept).union(self.add)
+
+    def _pattern_hit(self, atom: Atom) -> bool:
+        return any(matches(p, atom) for p in self.delete_patterns)
+
+    def __str__(self) -> str:
+        return f"{self.name}({', '.join(self.args)})"
+
+    def ipc(self) -> str:
+        """The IPC plan-file form, lower case: `(pick cube table)`."""
+        return "(" + " ".join([self.name, *self.args]).lower() + ")"
+
+
+def matches(pattern: Atom, atom: Atom) -> bool:
+    """True when `atom` is an instance of `pattern`, whose `_` arguments match anything."""
+    if pattern.predicate != atom.predicate or len(pattern.args) != len(atom.args):
+        return False
+    return all(p == WILDCARD or p == a for p, a in zip(pattern.args, atom.args))
+
+
+def atoms(items: Iterable[tuple[str, tuple[str, ...]]]) -> frozenset[Atom]:
+    """Build a state from (predicate, args) pairs; a convenience for tests and worlds."""
+    return frozenset(Atom(p, tuple(a)) for p, a in items)
+
+
+def ground_literal(literal: Literal, binding: Mapping[str, str]) -> GroundLiteral:
+    """Replace parameter names by their objects; constants and `_` stay as they are."""
+    args = tuple(binding.get(a, a) for a in literal.args)
+    return GroundLiteral(Atom(literal.predicate, args), literal.positive)
+
+
+def instantiate(template: ActionTemplate, args: tuple[str, ...]) -> GroundAction:
+    """Ground `template` with `args` given in parameter order.
+
+    Equalities are binding constraints, not run-time conditions, so they are left out of
+    the preconditions whether they were written under `where` or under `pre`.
+    """
+    if len(args) != len(template.parameters):
+        raise ValueError(f"{template.name} takes {len(template.parameters)} arguments, got {len(args)}")
+    binding = {p.name: a for p, a in zip(template.parameters, args)}
+    pre = tuple(
+        ground_literal(lit, binding) for lit in template.preconditions if lit.predicate != EQUALITY
+    )
+    add: list[Atom] = []
+    delete: list[Atom] = []
+    patterns: list[Atom] = []
+    for effect in template.effects:
+        atom = ground_literal(effect, binding).atom
+        if effect.positive:
+            add.append(atom)
+        elif WILDCARD in atom.args:
+            patterns.append(atom)
+        else:
+            delete.append(atom)
+    return GroundAction(
+        name=template.name,
+        args=tuple(args),
+        port_names=tuple(p.name for p in template.parameters),
+        preconditions=pre,
+        add=tuple(add),
+        delete=tuple(delete),
+        delete_patterns=tuple(patterns),
+        cost=template.cost,
+        duration=template.duration,
+    )

@@ -1,0 +1,1 @@
+"""The grammars, shipped as package data."""
