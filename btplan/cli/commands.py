@@ -1,4 +1,3 @@
-"""Imports each command module so that it registers itself on the app.
+"""Imports each command module so that it registers itself on the app."""
 
-Command modules are listed here as they are added; each owns one subcommand.
-"""
+from btplan.cli import check, export, generate, plan, run  # noqa: F401

@@ -1,0 +1,3 @@
+"""The `btplan check` command."""
+
+from __future__ import annotations

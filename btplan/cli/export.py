@@ -1,0 +1,3 @@
+"""The `btplan export` command."""
+
+from __future__ import annotations

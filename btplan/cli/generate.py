@@ -1,0 +1,3 @@
+"""The `btplan generate` command."""
+
+from __future__ import annotations

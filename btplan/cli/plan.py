@@ -1,0 +1,3 @@
+"""The `btplan plan` command."""
+
+from __future__ import annotations

@@ -1,0 +1,3 @@
+"""The `btplan run` command."""
+
+from __future__ import annotations
