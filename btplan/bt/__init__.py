@@ -1,13 +1,25 @@
 """Behavior Tree nodes, the tick engine and the formats trees are saved in."""
 
 from btplan.bt.composites import Fallback, Sequence
+from btplan.bt.debug import LeafContractError, StrictWorld
+from btplan.bt.decorators import (
+    Decorator,
+    ForceFailure,
+    ForceSuccess,
+    Inverter,
+    Retry,
+    Timeout,
+)
 from btplan.bt.leaves import Action, Condition, Leaf
 from btplan.bt.node import Composite, Node
+from btplan.bt.parallel import Parallel
 from btplan.bt.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
 from btplan.bt.tree import BehaviorTree
 from btplan.bt.world import LeafKey, World
 
 __all__ = [
     "FAILURE", "IDLE", "RUNNING", "SUCCESS", "Action", "BehaviorTree", "Composite",
-    "Condition", "Fallback", "Leaf", "LeafKey", "Node", "Sequence", "Status", "World",
+    "Condition", "Decorator", "Fallback", "ForceFailure", "ForceSuccess", "Inverter", "Leaf",
+    "LeafContractError", "LeafKey", "Node", "Parallel", "Retry", "Sequence", "Status",
+    "StrictWorld", "Timeout", "World",
 ]

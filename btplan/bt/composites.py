@@ -23,7 +23,7 @@ from btplan.bt.world import World
 class _Control(Composite):
     """Shared tick loop; `stop_on` is the child status that ends the loop early."""
 
-    __slots__ = ("memory", "_current")
+    __slots__ = ("_current", "memory")
     stop_on: Status = FAILURE
 
     def __init__(self, children: list[Node] | None = None, name: str = "", memory: bool = False):

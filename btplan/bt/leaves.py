@@ -17,7 +17,7 @@ def leaf_label(ident: str, args: tuple[str, ...]) -> str:
 
 
 class Leaf(Node):
-    __slots__ = ("ident", "args", "ports", "key")
+    __slots__ = ("args", "ident", "key", "ports")
 
     def __init__(
         self,

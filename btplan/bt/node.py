@@ -14,7 +14,7 @@ class Node:
     (IncreasePriority) without searching the whole tree.
     """
 
-    __slots__ = ("name", "status", "parent")
+    __slots__ = ("name", "parent", "status")
 
     def __init__(self, name: str = "") -> None:
         self.name = name

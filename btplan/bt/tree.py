@@ -2,23 +2,31 @@
 
 from __future__ import annotations
 
+from btplan.bt.debug import StrictWorld
 from btplan.bt.node import Node
 from btplan.bt.status import Status
 from btplan.bt.world import World
 
 
 class BehaviorTree:
-    """Owns the root so the planner can replace it (Algorithm 1 grows the tree at the root)."""
+    """Owns the root so the planner can replace it (Algorithm 1 grows the tree at the root).
 
-    __slots__ = ("root", "ticks", "name")
+    With `debug=True` every tick goes through `StrictWorld`, which raises when a
+    condition answers RUNNING or an action answers something that is not a status.
+    """
 
-    def __init__(self, root: Node, name: str = "Main") -> None:
+    __slots__ = ("debug", "name", "root", "ticks")
+
+    def __init__(self, root: Node, name: str = "Main", debug: bool = False) -> None:
         self.root = root
         self.ticks = 0
         self.name = name
+        self.debug = debug
 
     def tick(self, world: World) -> Status:
         self.ticks += 1
+        if self.debug:
+            world = StrictWorld(world)
         return self.root.tick(world)
 
     def halt(self, world: World) -> None:

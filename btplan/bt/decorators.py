@@ -1,0 +1,148 @@
+"""Decorators: one child, one rule that rewrites its status (BT.CPP's decorator nodes).
+
+A decorator is a Composite with at most one child, so the planner can `replace` the
+condition under an Inverter exactly as it replaces a child of a Sequence. Every
+decorator halts its child when it is halted itself; the ones that end a RUNNING child
+early (Timeout) halt it before returning.
+"""
+
+from __future__ import annotations
+
+from btplan.bt.node import Composite, Node
+from btplan.bt.status import FAILURE, RUNNING, SUCCESS, Status
+from btplan.bt.world import World
+
+
+class Decorator(Composite):
+    """A node with exactly one child; ticking it without one is a programming error."""
+
+    __slots__ = ()
+
+    def __init__(self, child: Node | None = None, name: str = "") -> None:
+        super().__init__([child] if child is not None else [], name)
+
+    @property
+    def child(self) -> Node:
+        if not self._children:
+            raise ValueError(f"decorator {self.name or type(self).__name__!r} has no child")
+        return self._children[0]
+
+    def insert(self, index: int, child: Node) -> None:
+        if self._children:
+            raise ValueError(f"decorator {self.name or type(self).__name__!r} already has a child")
+        super().insert(index, child)
+
+
+class Inverter(Decorator):
+    """SUCCESS becomes FAILURE and FAILURE becomes SUCCESS; RUNNING passes through.
+
+    This is how a negative condition (`not holding(cube)`) appears in a tree.
+    """
+
+    __slots__ = ()
+
+    def tick(self, world: World) -> Status:
+        status = self._children[0].tick(world)
+        if status is SUCCESS:
+            status = FAILURE
+        elif status is FAILURE:
+            status = SUCCESS
+        self.status = status
+        return status
+
+
+class ForceSuccess(Decorator):
+    """SUCCESS whether the child succeeded or failed; RUNNING passes through."""
+
+    __slots__ = ()
+
+    def tick(self, world: World) -> Status:
+        status = self._children[0].tick(world)
+        self.status = status = RUNNING if status is RUNNING else SUCCESS
+        return status
+
+
+class ForceFailure(Decorator):
+    """FAILURE whether the child succeeded or failed; RUNNING passes through."""
+
+    __slots__ = ()
+
+    def tick(self, world: World) -> Status:
+        status = self._children[0].tick(world)
+        self.status = status = RUNNING if status is RUNNING else FAILURE
+        return status
+
+
+class Retry(Decorator):
+    """Gives a failing child up to `attempts` tries (BT.CPP RetryUntilSuccessful).
+
+    Child SUCCESS: SUCCESS, and the count starts again. Child RUNNING: RUNNING.
+    Child FAILURE: one attempt is used; while attempts remain the decorator returns
+    RUNNING and ticks the child afresh on the next tick (as BT.CPP does, so a retry
+    never spins inside one tick); after the last attempt it returns FAILURE.
+    """
+
+    __slots__ = ("_failures", "attempts")
+
+    def __init__(self, child: Node | None = None, attempts: int = 1, name: str = "") -> None:
+        if attempts < 1:
+            raise ValueError(f"Retry needs at least one attempt, got {attempts}")
+        super().__init__(child, name)
+        self.attempts = attempts
+        self._failures = 0
+
+    def tick(self, world: World) -> Status:
+        status = self._children[0].tick(world)
+        if status is FAILURE:
+            self._failures += 1
+            if self._failures < self.attempts:
+                status = RUNNING
+            else:
+                self._failures = 0
+        elif status is SUCCESS:
+            self._failures = 0
+        self.status = status
+        return status
+
+    def halt(self, world: World) -> None:
+        self._failures = 0
+        super().halt(world)
+
+
+class Timeout(Decorator):
+    """Fails a child that is still RUNNING after `ticks` ticks, and halts it.
+
+    BT.CPP counts milliseconds; btplan counts ticks so runs are reproducible. The count
+    starts on the first tick that reaches the decorator while it is idle and ends
+    when the child returns SUCCESS or FAILURE, or when the decorator is halted.
+    """
+
+    __slots__ = ("_used", "ticks")
+
+    def __init__(self, child: Node | None = None, ticks: int = 1, name: str = "") -> None:
+        if ticks < 1:
+            raise ValueError(f"Timeout needs at least one tick, got {ticks}")
+        super().__init__(child, name)
+        self.ticks = ticks
+        self._used = 0
+
+    def tick(self, world: World) -> Status:
+        self._used += 1
+        child = self._children[0]
+        status = child.tick(world)
+        if status is RUNNING:
+            if self._used >= self.ticks:
+                child.halt(world)
+                self._used = 0
+                status = FAILURE
+        else:
+            self._used = 0
+        self.status = status
+        return status
+
+    def halt(self, world: World) -> None:
+        self._used = 0
+        super().halt(world)
+
+
+__all__ = ["Decorator", "ForceFailure", "ForceSuccess", "Inverter", "Retry", "Timeout"]
