@@ -14,12 +14,14 @@ from btplan.bt.leaves import Action, Condition, Leaf
 from btplan.bt.node import Composite, Node
 from btplan.bt.parallel import Parallel
 from btplan.bt.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
+from btplan.bt.trace import NodeTick, TickRecorder, TickTrace, node_ids, traces_to_jsonl
 from btplan.bt.tree import BehaviorTree
 from btplan.bt.world import LeafKey, World
 
 __all__ = [
     "FAILURE", "IDLE", "RUNNING", "SUCCESS", "Action", "BehaviorTree", "Composite",
     "Condition", "Decorator", "Fallback", "ForceFailure", "ForceSuccess", "Inverter", "Leaf",
-    "LeafContractError", "LeafKey", "Node", "Parallel", "Retry", "Sequence", "Status",
-    "StrictWorld", "Timeout", "World",
+    "LeafContractError", "LeafKey", "Node", "NodeTick", "Parallel", "Retry", "Sequence",
+    "Status", "StrictWorld", "TickRecorder", "TickTrace", "Timeout", "World", "node_ids",
+    "traces_to_jsonl",
 ]

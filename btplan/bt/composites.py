@@ -61,6 +61,7 @@ class Sequence(_Control):
     """Ticks children left to right while they succeed (the paper's "->")."""
 
     __slots__ = ()
+    kind = "Sequence"
     stop_on = FAILURE
 
 
@@ -68,4 +69,5 @@ class Fallback(_Control):
     """Ticks children left to right while they fail (the paper's "?")."""
 
     __slots__ = ()
+    kind = "Fallback"
     stop_on = SUCCESS

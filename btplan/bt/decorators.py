@@ -17,6 +17,7 @@ class Decorator(Composite):
     """A node with exactly one child; ticking it without one is a programming error."""
 
     __slots__ = ()
+    kind = "Decorator"
 
     def __init__(self, child: Node | None = None, name: str = "") -> None:
         super().__init__([child] if child is not None else [], name)
@@ -40,6 +41,7 @@ class Inverter(Decorator):
     """
 
     __slots__ = ()
+    kind = "Inverter"
 
     def tick(self, world: World) -> Status:
         status = self._children[0].tick(world)
@@ -55,6 +57,7 @@ class ForceSuccess(Decorator):
     """SUCCESS whether the child succeeded or failed; RUNNING passes through."""
 
     __slots__ = ()
+    kind = "ForceSuccess"
 
     def tick(self, world: World) -> Status:
         status = self._children[0].tick(world)
@@ -66,6 +69,7 @@ class ForceFailure(Decorator):
     """FAILURE whether the child succeeded or failed; RUNNING passes through."""
 
     __slots__ = ()
+    kind = "ForceFailure"
 
     def tick(self, world: World) -> Status:
         status = self._children[0].tick(world)
@@ -83,6 +87,7 @@ class Retry(Decorator):
     """
 
     __slots__ = ("_failures", "attempts")
+    kind = "Retry"
 
     def __init__(self, child: Node | None = None, attempts: int = 1, name: str = "") -> None:
         if attempts < 1:
@@ -118,6 +123,7 @@ class Timeout(Decorator):
     """
 
     __slots__ = ("_used", "ticks")
+    kind = "Timeout"
 
     def __init__(self, child: Node | None = None, ticks: int = 1, name: str = "") -> None:
         if ticks < 1:

@@ -18,6 +18,7 @@ def leaf_label(ident: str, args: tuple[str, ...]) -> str:
 
 class Leaf(Node):
     __slots__ = ("args", "ident", "key", "ports")
+    kind = "Leaf"
 
     def __init__(
         self,
@@ -39,6 +40,7 @@ class Condition(Leaf):
     """SUCCESS when the world says the condition holds, FAILURE otherwise; never RUNNING."""
 
     __slots__ = ()
+    kind = "Condition"
 
     def tick(self, world: World) -> Status:
         self.status = status = SUCCESS if world.check(self.key) else FAILURE
@@ -53,6 +55,7 @@ class Action(Leaf):
     """
 
     __slots__ = ()
+    kind = "Action"
 
     def tick(self, world: World) -> Status:
         if self.status is RUNNING:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 from btplan.bt.status import IDLE, Status
 from btplan.bt.world import World
 
@@ -15,6 +17,7 @@ class Node:
     """
 
     __slots__ = ("name", "parent", "status")
+    kind: ClassVar[str] = "Node"
 
     def __init__(self, name: str = "") -> None:
         self.name = name
@@ -47,6 +50,7 @@ class Composite(Node):
     """A control node with an ordered list of children."""
 
     __slots__ = ("_children",)
+    kind: ClassVar[str] = "Composite"
 
     def __init__(self, children: list[Node] | None = None, name: str = "") -> None:
         super().__init__(name)

@@ -22,6 +22,7 @@ class Parallel(Composite):
     """Ticks every unfinished child each tick; decides by success and failure counts."""
 
     __slots__ = ("_done", "_failures", "_successes", "failure", "success")
+    kind = "Parallel"
 
     def __init__(
         self,

@@ -2,10 +2,15 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from btplan.bt.debug import StrictWorld
 from btplan.bt.node import Node
 from btplan.bt.status import Status
 from btplan.bt.world import World
+
+if TYPE_CHECKING:
+    from btplan.bt.trace import TickRecorder
 
 
 class BehaviorTree:
@@ -13,20 +18,25 @@ class BehaviorTree:
 
     With `debug=True` every tick goes through `StrictWorld`, which raises when a
     condition answers RUNNING or an action answers something that is not a status.
+    With a `recorder` (see `btplan.bt.trace.TickRecorder`), every tick is recorded;
+    without one, ticking costs nothing extra.
     """
 
-    __slots__ = ("debug", "name", "root", "ticks")
+    __slots__ = ("debug", "name", "recorder", "root", "ticks")
 
     def __init__(self, root: Node, name: str = "Main", debug: bool = False) -> None:
         self.root = root
         self.ticks = 0
         self.name = name
         self.debug = debug
+        self.recorder: TickRecorder | None = None
 
     def tick(self, world: World) -> Status:
         self.ticks += 1
         if self.debug:
             world = StrictWorld(world)
+        if self.recorder is not None:
+            return self.recorder.tick(self, world)
         return self.root.tick(world)
 
     def halt(self, world: World) -> None:
