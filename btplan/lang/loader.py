@@ -1,0 +1,188 @@
+"""Load domains and problems from files in either language into checked models.
+
+Any file may hold a domain, problems, or both; problems find their domain by the name
+they are written for, so `btplan check domains/*.bt` works on a folder where some
+problems live in files of their own.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from btplan.errors import InputError, Span
+from btplan.io import STDIO, read_text
+from btplan.lang.bt_reader import read_bt
+from btplan.lang.names import check_unique, suggest
+from btplan.lang.syntax import DomainSyntax, ProblemSyntax
+from btplan.lang.validate import build_domain, build_problem
+from btplan.model import ROOT_TYPE, Domain, Problem, Task, TypedName
+
+PDDL_SUFFIXES = (".pddl",)
+
+
+@dataclass(frozen=True, slots=True)
+class BtFile:
+    """What one .bt text holds: at most one domain, and any number of problems.
+
+    Problems are checked against the domain when the file holds it; a file of problems
+    alone is checked once its domain is known (`bind`).
+    """
+
+    path: str
+    domain: Domain | None
+    problems: tuple[Problem, ...]
+    problem_syntax: tuple[ProblemSyntax, ...]
+
+    def bind(self, domain: Domain) -> tuple[Problem, ...]:
+        """The problems of this file, checked against `domain`."""
+        return tuple(build_problem(p, domain) for p in self.problem_syntax)
+
+
+@dataclass(frozen=True, slots=True)
+class Collection:
+    """Every domain and every problem of a set of inputs, each problem checked."""
+
+    domains: tuple[Domain, ...]
+    problems: tuple[Problem, ...]
+    paths: tuple[str, ...]
+
+    def task(self, problem: str | None = None) -> Task:
+        """The first problem with its domain, or the one called `problem`."""
+        where = Span(self.paths[0] if self.paths else STDIO, 1, 1)
+        if not self.problems:
+            raise InputError(
+                "no problem found",
+                where,
+                "add 'problem NAME for DOMAIN { objects {...} init {...} goal {...} }' "
+                "or give a problem file",
+            )
+        chosen = self.problems[0]
+        if problem is not None:
+            named = [p for p in self.problems if p.name == problem]
+            if not named:
+                names = [p.name for p in self.problems]
+                raise InputError(
+                    f"no problem called '{problem}'",
+                    where,
+                    suggest(problem, names) or f"the problems are {', '.join(sorted(names))}",
+                )
+            chosen = named[0]
+        domain = next(d for d in self.domains if d.name == chosen.domain)
+        return Task(domain=domain, problem=chosen)
+
+
+def parse_bt(text: str, path: str) -> BtFile:
+    """Parse and check one .bt text (domain and/or problems)."""
+    domains, problems = _split(read_bt(text, path))
+    if len(domains) > 1:
+        raise domains[1].name.at.error(
+            "a file holds at most one domain", "put each domain in a file of its own"
+        )
+    domain = build_domain(domains[0]) if domains else None
+    if domain is not None:
+        checked = tuple(build_problem(p, domain) for p in problems)
+    else:
+        checked = tuple(_unchecked_problem(p) for p in problems)
+    return BtFile(path=path, domain=domain, problems=checked, problem_syntax=tuple(problems))
+
+
+def read_units(path: str) -> tuple[list[DomainSyntax], list[ProblemSyntax]]:
+    """Read one input (a path, or `-` for standard input) in the language it is written in."""
+    text = read_text(path)
+    if is_pddl(path, text):
+        raise InputError("PDDL input cannot be read yet", Span(path, 1, 1))
+    return _split(read_bt(text, path))
+
+
+def collect(paths: Sequence[str]) -> Collection:
+    """Read every input, check every domain, and check each problem against its domain."""
+    if not paths:
+        raise InputError("no input files given")
+    if sum(1 for p in paths if p == STDIO) > 1:
+        raise InputError("standard input ('-') can be read only once")
+    domain_syntax: list[DomainSyntax] = []
+    problem_syntax: list[ProblemSyntax] = []
+    for path in paths:
+        found_domains, found_problems = read_units(path)
+        domain_syntax.extend(found_domains)
+        problem_syntax.extend(found_problems)
+    domains: dict[str, Domain] = {}
+    for d_syntax in domain_syntax:
+        if d_syntax.name.text in domains:
+            raise d_syntax.name.at.error(f"domain '{d_syntax.name.text}' is given twice")
+        domains[d_syntax.name.text] = build_domain(d_syntax)
+    check_unique((p.name for p in problem_syntax), "problem")
+    problems = []
+    for p_syntax in problem_syntax:
+        domain = domains.get(p_syntax.domain.text)
+        if domain is None:
+            raise p_syntax.domain.at.error(
+                f"problem '{p_syntax.name.text}' is for domain '{p_syntax.domain.text}', "
+                "which none of the inputs defines",
+                suggest(p_syntax.domain.text, domains) or "give the domain file too",
+            )
+        problems.append(build_problem(p_syntax, domain))
+    return Collection(tuple(domains.values()), tuple(problems), tuple(paths))
+
+
+def load(paths: Sequence[str], problem: str | None = None) -> Task:
+    """Load a planning task: one .bt file with domain and problem, or a domain file and a
+    problem file (.bt or .pddl; `-` reads standard input). With several problems, the
+    first is taken unless `problem` names one."""
+    if isinstance(paths, str):
+        paths = [paths]
+    collection = collect(paths)
+    if not collection.domains:
+        raise InputError(
+            "no domain found",
+            Span(paths[0], 1, 1),
+            "add 'domain NAME { ... }' or give the domain file too",
+        )
+    return collection.task(problem)
+
+
+def load_domain(path: str) -> Domain:
+    """Load the one domain of a file (any problems in it are checked too)."""
+    collection = collect([path])
+    if not collection.domains:
+        raise InputError(
+            "no domain found in this file", Span(path, 1, 1), "a domain starts with 'domain NAME {'"
+        )
+    return collection.domains[0]
+
+
+def is_pddl(path: str, text: str) -> bool:
+    """PDDL by suffix; for standard input or other suffixes, by the first character."""
+    suffix = Path(path).suffix.lower() if path != STDIO else ""
+    if suffix in PDDL_SUFFIXES:
+        return True
+    if suffix == ".bt":
+        return False
+    for line in text.splitlines():
+        stripped = line.strip()
+        if stripped and not stripped.startswith((";", "#")):
+            return stripped.startswith("(")
+    return False
+
+
+def _split(
+    units: Sequence[DomainSyntax | ProblemSyntax],
+) -> tuple[list[DomainSyntax], list[ProblemSyntax]]:
+    domains = [u for u in units if isinstance(u, DomainSyntax)]
+    problems = [u for u in units if isinstance(u, ProblemSyntax)]
+    return domains, problems
+
+
+def _unchecked_problem(syntax: ProblemSyntax) -> Problem:
+    return Problem(
+        name=syntax.name.text,
+        domain=syntax.domain.text,
+        objects=tuple(
+            TypedName(name=o.name.text, type=o.type.text if o.type else ROOT_TYPE)
+            for o in syntax.objects
+        ),
+        init=tuple(lit.literal() for lit in syntax.init),
+        goal=tuple(lit.literal() for lit in syntax.goal),
+    )

@@ -1,0 +1,26 @@
+"""Name lookups shared by the checks: duplicates and "did you mean" hints."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from difflib import get_close_matches
+
+from btplan.lang.syntax import Name
+
+
+def suggest(name: str, known: Iterable[str]) -> str | None:
+    """A "did you mean" hint from the closest known name; sorted so runs agree."""
+    near = get_close_matches(name, sorted(known), n=1)
+    return f"did you mean '{near[0]}'?" if near else None
+
+
+def check_unique(names: Iterable[Name], what: str) -> None:
+    """Reject the second declaration of a name, pointing at both."""
+    seen: dict[str, Name] = {}
+    for name in names:
+        if name.text in seen:
+            first = seen[name.text].at.span
+            raise name.at.error(
+                f"{what} '{name.text}' is declared twice", f"first declared at {first}"
+            )
+        seen[name.text] = name

@@ -1,0 +1,136 @@
+"""Located syntax: what a file said, and where, before it becomes a model.
+
+The pydantic models carry no positions (they are shared by both languages and by code
+that builds domains by hand), so both readers first produce these small records, and
+validation turns them into models while it can still point at the offending text.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from btplan.errors import InputError, Span
+from btplan.model import EQUALITY, Literal
+
+
+@dataclass(frozen=True, slots=True)
+class Where:
+    """A place in a source text, with the text of its line for the caret display."""
+
+    span: Span
+    line_text: str
+
+    def error(self, message: str, hint: str | None = None) -> InputError:
+        return InputError(message, self.span, hint, self.line_text)
+
+
+@dataclass(frozen=True, slots=True)
+class Name:
+    """An identifier as written, with its place."""
+
+    text: str
+    at: Where
+
+
+@dataclass(frozen=True, slots=True)
+class Number:
+    text: str
+    at: Where
+
+
+@dataclass(frozen=True, slots=True)
+class TypedSyntax:
+    """One entry of a types, constants or objects list: `name : type`, type optional."""
+
+    name: Name
+    type: Name | None
+
+
+@dataclass(frozen=True, slots=True)
+class ParameterSyntax:
+    name: Name
+    type: Name | None
+    refined: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class PredicateSyntax:
+    name: Name
+    parameters: tuple[ParameterSyntax, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class LiteralSyntax:
+    """A literal; `predicate` is "=" for equalities, whose `at` is the left operand."""
+
+    predicate: Name
+    args: tuple[Name, ...]
+    positive: bool
+    at: Where
+
+    @property
+    def is_equality(self) -> bool:
+        return self.predicate.text == EQUALITY
+
+    def literal(self) -> Literal:
+        return Literal(
+            predicate=self.predicate.text,
+            args=tuple(a.text for a in self.args),
+            positive=self.positive,
+        )
+
+
+@dataclass(frozen=True, slots=True)
+class ActionSyntax:
+    name: Name
+    parameters: tuple[ParameterSyntax, ...]
+    where: tuple[LiteralSyntax, ...] = ()
+    pre: tuple[LiteralSyntax, ...] = ()
+    post: tuple[LiteralSyntax, ...] = ()
+    cost: Number | None = None
+    duration: Number | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class DomainSyntax:
+    name: Name
+    requirements: tuple[Name, ...] = ()
+    types: tuple[TypedSyntax, ...] = ()
+    constants: tuple[TypedSyntax, ...] = ()
+    predicates: tuple[PredicateSyntax, ...] = ()
+    actions: tuple[ActionSyntax, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class ProblemSyntax:
+    name: Name
+    domain: Name
+    objects: tuple[TypedSyntax, ...] = ()
+    init: tuple[LiteralSyntax, ...] = ()
+    goal: tuple[LiteralSyntax, ...] = ()
+
+
+class Source:
+    """The text of one input, split into lines once, to build `Where`s cheaply."""
+
+    __slots__ = ("lines", "path", "text")
+
+    def __init__(self, text: str, path: str) -> None:
+        self.path = path
+        self.text = text
+        # lark counts only "\n" as a line break, so str.splitlines would misalign lines
+        self.lines = text.split("\n")
+
+    def at(self, line: int, column: int) -> Where:
+        line_text = self.lines[line - 1] if 0 < line <= len(self.lines) else ""
+        return Where(Span(self.path, line, column), line_text)
+
+    def end(self) -> Where:
+        """The last character of the text: where end-of-file errors point."""
+        index = len(self.lines)
+        while index > 1 and not self.lines[index - 1].strip():
+            index -= 1
+        return self.at(index, len(self.lines[index - 1].rstrip()) + 1)
+
+    def start(self) -> Where:
+        return self.at(1, 1)

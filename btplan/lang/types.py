@@ -1,0 +1,89 @@
+"""The type hierarchy of a domain while it is checked: resolution, cycles, subtyping.
+
+`object` is the built-in root, and a type declared without a parent derives from it.
+A domain may also place `object` itself under a type of its own (the paper's example
+says every object is a location the robot can approach: `object : location`); then
+the types declared without a parent are top-level types, so that the hierarchy stays
+a forest instead of becoming a cycle.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from btplan.lang.names import suggest
+from btplan.lang.syntax import Name, TypedSyntax
+from btplan.model import ROOT_TYPE, Domain, TypeDef
+
+
+class TypeTable:
+    """Declared types and their parents, checked for unknown parents and cycles."""
+
+    def __init__(self, parents: dict[str, str | None]) -> None:
+        self.parents = parents
+
+    @classmethod
+    def from_domain(cls, domain: Domain) -> TypeTable:
+        return cls(dict(domain.type_parents))
+
+    @classmethod
+    def from_syntax(cls, entries: Iterable[TypedSyntax]) -> TypeTable:
+        entries = list(entries)
+        seen: dict[str, Name] = {}
+        for entry in entries:
+            if entry.name.text in seen and entry.name.text != ROOT_TYPE:
+                raise entry.name.at.error(
+                    f"type '{entry.name.text}' is declared twice",
+                    f"first declared at {seen[entry.name.text].at.span}",
+                )
+            seen[entry.name.text] = entry.name
+        root_demoted = any(e.name.text == ROOT_TYPE and e.type is not None for e in entries)
+        default_parent = None if root_demoted else ROOT_TYPE
+        parents: dict[str, str | None] = {} if root_demoted else {ROOT_TYPE: None}
+        for entry in entries:
+            if entry.name.text == ROOT_TYPE and entry.type is None:
+                continue
+            parents[entry.name.text] = entry.type.text if entry.type else default_parent
+        table = cls(parents)
+        for entry in entries:
+            if entry.type is not None:
+                table.resolve(entry.type)
+        table._check_cycles(entries)
+        return table
+
+    def _check_cycles(self, entries: list[TypedSyntax]) -> None:
+        for entry in entries:
+            chain = [entry.name.text]
+            current = self.parents.get(entry.name.text)
+            while current is not None:
+                if current in chain:
+                    loop = " -> ".join([*chain[chain.index(current) :], current])
+                    raise entry.name.at.error(f"the type hierarchy has a cycle: {loop}")
+                chain.append(current)
+                current = self.parents.get(current)
+
+    def resolve(self, name: Name | None) -> str:
+        """The name of a declared type; an omitted type means the root."""
+        if name is None:
+            return ROOT_TYPE
+        if name.text not in self.parents and name.text != ROOT_TYPE:
+            raise name.at.error(f"unknown type '{name.text}'", suggest(name.text, self.parents))
+        return name.text
+
+    def ancestors(self, name: str) -> list[str]:
+        chain: list[str] = []
+        current: str | None = name
+        while current is not None and current not in chain:
+            chain.append(current)
+            current = self.parents.get(current)
+        return chain
+
+    def is_subtype(self, name: str, of: str) -> bool:
+        return of in self.ancestors(name) or (of == ROOT_TYPE and ROOT_TYPE not in self.parents)
+
+    def related(self, a: str, b: str) -> bool:
+        """True when some object could be of both types: one is a subtype of the other."""
+        return self.is_subtype(a, b) or self.is_subtype(b, a)
+
+    def definitions(self) -> tuple[TypeDef, ...]:
+        return tuple(TypeDef(name=n, parent=p) for n, p in self.parents.items())

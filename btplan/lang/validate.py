@@ -1,0 +1,291 @@
+"""Check located syntax and build the frozen models, pointing at the first mistake.
+
+Both readers (.bt and PDDL) end here, so both languages get the same checks and the
+same messages: unknown names with a "did you mean", wrong arity, wrong types, unbound
+variables, duplicates, and postconditions that contradict each other.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from btplan.lang.names import check_unique, suggest
+from btplan.lang.syntax import (
+    ActionSyntax,
+    DomainSyntax,
+    LiteralSyntax,
+    Name,
+    Number,
+    ProblemSyntax,
+    TypedSyntax,
+)
+from btplan.lang.types import TypeTable
+from btplan.model import (
+    EQUALITY,
+    WILDCARD,
+    ActionTemplate,
+    Domain,
+    Literal,
+    Parameter,
+    Predicate,
+    Problem,
+    TypedName,
+)
+
+# --- domain ---------------------------------------------------------------------------
+
+
+def build_domain(syntax: DomainSyntax) -> Domain:
+    """Validate a domain and build its model (equalities in `pre` move to constraints)."""
+    types = TypeTable.from_syntax(syntax.types)
+    constants = _typed_names(syntax.constants, types, "constant")
+    constant_types = {c.name: c.type for c in constants}
+    predicates = _predicates(syntax, types)
+    check_unique((a.name for a in syntax.actions), "action")
+    actions = tuple(_action(a, types, predicates, constant_types) for a in syntax.actions)
+    return Domain(
+        name=syntax.name.text,
+        requirements=tuple(r.text for r in syntax.requirements),
+        types=types.definitions(),
+        constants=constants,
+        predicates=tuple(predicates.values()),
+        actions=actions,
+    )
+
+
+def _typed_names(
+    entries: tuple[TypedSyntax, ...], types: TypeTable, what: str
+) -> tuple[TypedName, ...]:
+    check_unique((e.name for e in entries), what)
+    out = []
+    for entry in entries:
+        type_name = types.resolve(entry.type)
+        out.append(TypedName(name=entry.name.text, type=type_name))
+    return tuple(out)
+
+
+def _predicates(syntax: DomainSyntax, types: TypeTable) -> dict[str, Predicate]:
+    check_unique((p.name for p in syntax.predicates), "predicate")
+    table: dict[str, Predicate] = {}
+    for decl in syntax.predicates:
+        check_unique((p.name for p in decl.parameters), "parameter")
+        for p in decl.parameters:
+            if p.refined:
+                raise p.name.at.error("only action parameters can be 'refined'")
+        params = tuple(
+            Parameter(name=p.name.text, type=types.resolve(p.type)) for p in decl.parameters
+        )
+        table[decl.name.text] = Predicate(name=decl.name.text, parameters=params)
+    return table
+
+
+def _action(
+    syntax: ActionSyntax,
+    types: TypeTable,
+    predicates: Mapping[str, Predicate],
+    constants: Mapping[str, str],
+) -> ActionTemplate:
+    check_unique((p.name for p in syntax.parameters), "parameter")
+    params = []
+    for p in syntax.parameters:
+        if p.name.text in constants:
+            raise p.name.at.error(
+                f"parameter '{p.name.text}' has the name of a constant", "rename the parameter"
+            )
+        if p.name.text == WILDCARD:
+            raise p.name.at.error("'_' is the wildcard and cannot name a parameter")
+        params.append(Parameter(name=p.name.text, type=types.resolve(p.type), refined=p.refined))
+    scope = {p.name: p.type for p in params}
+    scope.update({c: t for c, t in constants.items() if c not in scope})
+    context = _LiteralChecker(types, predicates, scope, syntax.name.text, set(constants))
+
+    where = [context.check(lit, "where") for lit in syntax.where]
+    pre: list[Literal] = []
+    for lit in syntax.pre:
+        checked = context.check(lit, "pre")
+        # equalities are static: they restrict bindings, they are not run-time conditions
+        (where if checked.predicate == EQUALITY else pre).append(checked)
+    post = [context.check(lit, "post") for lit in syntax.post]
+    _check_contradictions(
+        syntax.post, "postconditions", "this action would make it both true and false"
+    )
+    _check_contradictions(syntax.pre, "preconditions", "this action could never run")
+    return ActionTemplate(
+        name=syntax.name.text,
+        parameters=tuple(params),
+        constraints=tuple(where),
+        preconditions=tuple(pre),
+        effects=tuple(post),
+        cost=_cost(syntax.cost),
+        duration=_duration(syntax.duration),
+    )
+
+
+def _cost(number: Number | None) -> float:
+    if number is None:
+        return 1.0
+    return float(number.text)
+
+
+def _duration(number: Number | None) -> int:
+    if number is None:
+        return 1
+    if "." in number.text or int(number.text) < 1:
+        raise number.at.error("a duration is a whole number of ticks, at least 1")
+    return int(number.text)
+
+
+def _check_contradictions(literals: tuple[LiteralSyntax, ...], what: str, why: str) -> None:
+    seen: dict[tuple[str, tuple[str, ...]], LiteralSyntax] = {}
+    for lit in literals:
+        key = (lit.predicate.text, tuple(a.text for a in lit.args))
+        other = seen.get(key)
+        if other is not None and other.positive != lit.positive:
+            raise lit.at.error(
+                f"contradictory {what}: '{other.literal()}' and '{lit.literal()}'", why
+            )
+        seen[key] = lit
+
+
+class _LiteralChecker:
+    """Checks the literals of one action against its parameters and the constants."""
+
+    def __init__(
+        self,
+        types: TypeTable,
+        predicates: Mapping[str, Predicate],
+        scope: Mapping[str, str],
+        action: str,
+        constants: set[str],
+    ) -> None:
+        self.types = types
+        self.predicates = predicates
+        self.scope = scope
+        self.action = action
+        self.constants = constants
+
+    def check(self, lit: LiteralSyntax, part: str) -> Literal:
+        if lit.is_equality:
+            if part == "post":
+                raise lit.at.error(
+                    "an equality cannot be a postcondition",
+                    "equalities belong under 'where:' or 'pre:'",
+                )
+            for arg in lit.args:
+                self._arg_type(arg, lit, part)
+            return lit.literal()
+        predicate = check_predicate(lit, self.predicates)
+        for arg, param in zip(lit.args, predicate.parameters):
+            if arg.text == WILDCARD:
+                if part != "post" or lit.positive:
+                    raise arg.at.error(
+                        "the wildcard '_' is only allowed in a negative postcondition",
+                        "write e.g. 'post: not near(_), near(l)'",
+                    )
+                continue
+            arg_type = self._arg_type(arg, lit, part)
+            if not self.types.related(arg_type, param.type):
+                raise arg.at.error(
+                    f"'{arg.text}' is a {arg_type}, but {predicate.name} expects a {param.type} here"
+                )
+        return lit.literal()
+
+    def _arg_type(self, arg: Name, lit: LiteralSyntax, part: str) -> str:
+        if arg.text in self.scope:
+            return self.scope[arg.text]
+        params = sorted(set(self.scope) - self.constants)
+        hint = suggest(arg.text, self.scope) or (
+            f"the parameters of {self.action} are {', '.join(params)}"
+            if params
+            else f"{self.action} has no parameters"
+        )
+        if part == "post":
+            raise arg.at.error(
+                f"unbound variable '{arg.text}' in a postcondition of {self.action}", hint
+            )
+        raise arg.at.error(
+            f"'{arg.text}' is neither a parameter of {self.action} nor a constant", hint
+        )
+
+
+def check_predicate(lit: LiteralSyntax, predicates: Mapping[str, Predicate]) -> Predicate:
+    """The declared predicate of a literal, with the right number of arguments."""
+    name = lit.predicate.text
+    predicate = predicates.get(name)
+    if predicate is None:
+        raise lit.predicate.at.error(f"unknown predicate '{name}'", suggest(name, predicates))
+    if len(lit.args) != predicate.arity:
+        params = ", ".join(f"{p.name}: {p.type}" for p in predicate.parameters)
+        raise lit.predicate.at.error(
+            f"{name} takes {predicate.arity} argument{'s' if predicate.arity != 1 else ''}, "
+            f"got {len(lit.args)}",
+            f"declared as {name}({params})",
+        )
+    return predicate
+
+
+# --- problem --------------------------------------------------------------------------
+
+
+def build_problem(syntax: ProblemSyntax, domain: Domain) -> Problem:
+    """Validate a problem against its (already valid) domain and build its model."""
+    if syntax.domain.text != domain.name:
+        raise syntax.domain.at.error(
+            f"problem '{syntax.name.text}' is for domain '{syntax.domain.text}', "
+            f"but the domain given is '{domain.name}'"
+        )
+    types = TypeTable.from_domain(domain)
+    objects = _typed_names(syntax.objects, types, "object")
+    constants = {c.name for c in domain.constants}
+    for entry in syntax.objects:
+        if entry.name.text in constants:
+            raise entry.name.at.error(
+                f"'{entry.name.text}' is already a constant of domain '{domain.name}'"
+            )
+    known = {c.name: c.type for c in domain.constants}
+    known.update({o.name: o.type for o in objects})
+    facts = _FactChecker(types, domain.predicate_map, known)
+    init = []
+    for lit in syntax.init:
+        if not lit.positive:
+            raise lit.at.error(
+                "initial facts are positive", "leave out what is false: it is false by default"
+            )
+        init.append(facts.check(lit, "initial fact"))
+    goal = [facts.check(lit, "goal") for lit in syntax.goal]
+    _check_contradictions(syntax.goal, "goal conditions", "no state satisfies both")
+    return Problem(
+        name=syntax.name.text,
+        domain=syntax.domain.text,
+        objects=objects,
+        init=tuple(dict.fromkeys(init)),
+        goal=tuple(goal),
+    )
+
+
+class _FactChecker:
+    """Checks ground literals (initial facts, goals) against objects and constants."""
+
+    def __init__(
+        self, types: TypeTable, predicates: Mapping[str, Predicate], known: Mapping[str, str]
+    ) -> None:
+        self.types = types
+        self.predicates = predicates
+        self.known = known
+
+    def check(self, lit: LiteralSyntax, what: str) -> Literal:
+        if lit.is_equality:
+            raise lit.at.error(f"an equality cannot be a{'n' if what[0] in 'aeiou' else ''} {what}")
+        predicate = check_predicate(lit, self.predicates)
+        for arg, param in zip(lit.args, predicate.parameters):
+            if arg.text not in self.known:
+                raise arg.at.error(
+                    f"unknown object '{arg.text}' in a{'n' if what[0] in 'aeiou' else ''} {what}",
+                    suggest(arg.text, self.known) or "declare it under 'objects'",
+                )
+            arg_type = self.known[arg.text]
+            if not self.types.is_subtype(arg_type, param.type):
+                raise arg.at.error(
+                    f"'{arg.text}' is a {arg_type}, but {predicate.name} expects a {param.type} here"
+                )
+        return lit.literal()
