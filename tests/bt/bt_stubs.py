@@ -7,6 +7,7 @@ durations, enough to replay the paper's Example 1 without the planner.
 
 from __future__ import annotations
 
+import random
 from collections import Counter
 from collections.abc import Iterable
 
@@ -18,8 +19,15 @@ from btplan.bt import (
     BehaviorTree,
     Condition,
     Fallback,
+    ForceFailure,
+    ForceSuccess,
+    Inverter,
+    Node,
+    Parallel,
+    Retry,
     Sequence,
     Status,
+    Timeout,
 )
 from btplan.bt.world import LeafKey
 
@@ -108,8 +116,12 @@ class MiniWorld:
         self.progress.pop(key, None)
 
 
+PORTS = {"on": ("o", "l"), "holding": ("o",), "near": ("l",), "free": ("t",)}
+
+
 def C(pred: str, *args: str) -> Condition:
-    return Condition(pred, args)
+    """A condition of Example 1, with the predicate's parameter names as ports."""
+    return Condition(pred, args, PORTS.get(pred, ()))
 
 
 def figure7_root() -> Fallback:
@@ -162,5 +174,36 @@ def example1_world() -> MiniWorld:
     )
 
 
-__all__ = ["FAILURE", "RUNNING", "SUCCESS", "C", "MiniWorld", "ScriptWorld", "example1_world",
-           "figure7_root", "figure7_tree", "label"]
+
+
+def every_kind_root() -> Node:
+    """A small tree with one node of every kind, for format round trips."""
+    return Sequence([
+        Inverter(Condition("holding", ("cube",), ("o",))),
+        Fallback([Condition("hand_empty"), ForceFailure(Action("Drop", ("cube",), ("o",)))],
+                 memory=True, name="drop it"),
+        Parallel([Retry(Action("Pick", ("cube",), ("o",)), attempts=3),
+                  Timeout(Action("Wave"), ticks=4),
+                  ForceSuccess(Condition("lit", ("lamp",), ("x",), name="lamp is on"))],
+                 success=2, failure=1),
+        Sequence([Condition("near", ("goal",), ("l",))], memory=True),
+    ], name="all kinds")
+
+
+def random_root(rng: random.Random, depth: int = 3) -> Node:
+    """A random tree of Sequences, Fallbacks, Inverters, conditions and actions."""
+    if depth == 0 or rng.random() < 0.3:
+        arg = rng.choice(["a", "b"])
+        if rng.random() < 0.5:
+            return Condition(rng.choice(["p", "q"]), (arg,), ("x",))
+        return Action(rng.choice(["A", "B"]), (arg,), ("y",))
+    roll = rng.random()
+    if roll < 0.15:
+        return Inverter(random_root(rng, depth - 1))
+    kind = Sequence if roll < 0.6 else Fallback
+    children = [random_root(rng, depth - 1) for _ in range(rng.randint(1, 3))]
+    return kind(children, memory=rng.random() < 0.25)
+
+
+__all__ = ["FAILURE", "RUNNING", "SUCCESS", "C", "MiniWorld", "ScriptWorld", "every_kind_root",
+           "example1_world", "figure7_root", "figure7_tree", "label", "random_root"]
