@@ -13,7 +13,8 @@ from btplan.bt.world import LeafKey, World
 
 
 def leaf_label(ident: str, args: tuple[str, ...]) -> str:
-    return f"{ident}({', '.join(args)})"
+    """`holding(cube)`, or just `hand_empty` without arguments, as the paper writes them."""
+    return f"{ident}({', '.join(args)})" if args else ident
 
 
 class Leaf(Node):

@@ -7,20 +7,32 @@ lives in its own module and heavy or optional work stays there.
 from __future__ import annotations
 
 from btplan.bt.formats.btcpp import dump_xml, load_xml
+from btplan.bt.formats.dot import dump_dot
 from btplan.bt.formats.saved import dump_json, json_schema, load_json
+from btplan.bt.formats.text import dump_ascii
+from btplan.bt.trace import last_statuses
 from btplan.bt.tree import BehaviorTree
 from btplan.errors import InputError
 
-DUMP_FORMATS = ("xml", "json")
+DUMP_FORMATS = ("xml", "dot", "json", "ascii")
 LOAD_FORMATS = ("json", "xml")
 
 
 def dump(tree: BehaviorTree, fmt: str, with_status: bool = False) -> str:
-    """The tree as text in `fmt`; `with_status` adds each node's last status."""
+    """The tree as text in `fmt` (xml, dot, json, ascii).
+
+    `with_status` adds each node's last status (json) or colours by it (dot, ascii);
+    BT.CPP XML has no place for statuses and ignores it.
+    """
     if fmt == "json":
         return dump_json(tree, with_status)
     if fmt == "xml":
         return dump_xml(tree)
+    statuses = last_statuses(tree.root) if with_status else None
+    if fmt == "dot":
+        return dump_dot(tree, statuses)
+    if fmt == "ascii":
+        return dump_ascii(tree, statuses)
     raise InputError(f"unknown tree format {fmt!r}", hint=f"use one of {', '.join(DUMP_FORMATS)}")
 
 
