@@ -1,3 +1,63 @@
-"""The `btplan export` command."""
+"""The `btplan export` command: convert a saved tree (JSON or BT.CPP XML) to another format."""
 
 from __future__ import annotations
+
+from enum import Enum
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from btplan.bt.formats import dump, json_schema, load_tree
+from btplan.cli.app import app, guarded
+from btplan.errors import InputError, Span
+from btplan.io import STDIO, read_text, write_atomic
+
+
+class Format(str, Enum):
+    xml = "xml"
+    dot = "dot"
+    json = "json"
+    ascii = "ascii"
+
+
+def input_format(path: str, text: str) -> str:
+    """json or xml, from the file extension or else from the first character."""
+    suffix = Path(path).suffix.lower() if path != STDIO else ""
+    if suffix in (".json", ".xml"):
+        return suffix[1:]
+    first = text.lstrip()[:1]
+    if first == "{":
+        return "json"
+    if first == "<":
+        return "xml"
+    raise InputError("cannot tell whether this tree is JSON or XML", Span(path, 1, 1),
+                     hint="save it as .json or .xml")
+
+
+@app.command()
+@guarded
+def export(
+    fmt: Annotated[Format, typer.Argument(metavar="FORMAT", help="xml, dot, json or ascii.")],
+    tree: Annotated[str | None, typer.Argument(
+        metavar="TREE", help="A saved tree (.json or BT.CPP .xml); '-' reads standard input.",
+        show_default=False)] = None,
+    out: Annotated[str, typer.Option("-o", "--out", help="Output file; '-' is standard output.")
+                   ] = STDIO,
+    schema: Annotated[bool, typer.Option(
+        "--schema", help="Print the JSON schema of saved trees instead (json only).")] = False,
+    status: Annotated[bool, typer.Option(
+        "--status", help="Keep (json) or colour by (dot, ascii) the statuses saved in TREE.")
+                      ] = False,
+) -> None:
+    """Convert a saved tree: BT.CPP v4 XML, graphviz DOT, btplan JSON or a text view."""
+    if schema:
+        if fmt is not Format.json:
+            raise InputError("--schema describes the JSON format", hint="use: export json --schema")
+        write_atomic(out, json_schema())
+        return
+    if tree is None:
+        raise InputError("missing TREE: a saved tree file, or '-' for standard input")
+    text = read_text(tree)
+    loaded = load_tree(text, input_format(tree, text), tree)
+    write_atomic(out, dump(loaded, fmt.value, with_status=status))
