@@ -92,7 +92,9 @@ def read_units(path: str) -> tuple[list[DomainSyntax], list[ProblemSyntax]]:
     """Read one input (a path, or `-` for standard input) in the language it is written in."""
     text = read_text(path)
     if is_pddl(path, text):
-        raise InputError("PDDL input cannot be read yet", Span(path, 1, 1))
+        from btplan.lang.pddl_reader import read_pddl
+
+        return _split(read_pddl(text, path))
     return _split(read_bt(text, path))
 
 
@@ -106,6 +108,12 @@ def collect(paths: Sequence[str]) -> Collection:
     problem_syntax: list[ProblemSyntax] = []
     for path in paths:
         found_domains, found_problems = read_units(path)
+        if not found_domains and not found_problems:
+            raise InputError(
+                "this input holds no domain and no problem",
+                Span(path, 1, 1),
+                "a domain starts with 'domain NAME {', a problem with 'problem NAME for DOMAIN {'",
+            )
         domain_syntax.extend(found_domains)
         problem_syntax.extend(found_problems)
     domains: dict[str, Domain] = {}

@@ -1,0 +1,76 @@
+"""`btplan check`: exit 0 and a summary on good input, exit 2 and a located error on bad input."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from typer.testing import CliRunner
+
+from btplan.cli import app
+
+DOMAINS = Path(__file__).resolve().parents[2] / "domains"
+runner = CliRunner()
+
+
+def test_every_bundled_domain_checks() -> None:
+    files = sorted(str(p) for p in DOMAINS.glob("*.bt"))
+    result = runner.invoke(app, ["check", *files])
+    assert result.exit_code == 0, result.output
+    for name in ("pick_place", "blocksworld", "gripper", "logistics", "sussman"):
+        assert name in result.stdout
+
+
+def test_summary_names_types_predicates_actions_and_goal() -> None:
+    result = runner.invoke(app, ["check", str(DOMAINS / "pick_place.bt")])
+    assert result.exit_code == 0
+    out = result.stdout
+    assert "domain pick_place" in out
+    assert "types       3: location, object, trajectory" in out
+    assert "actions     3: MoveTo, Pick, Place" in out
+    assert "problem cube_on_goal for pick_place" in out
+    assert "goal        1: on(cube, goal)" in out
+
+
+def test_json_prints_the_parsed_models() -> None:
+    result = runner.invoke(app, ["check", "--json", str(DOMAINS / "pick_place.bt")])
+    assert result.exit_code == 0
+    data = json.loads(result.stdout)
+    assert [a["name"] for a in data["domains"][0]["actions"]] == ["MoveTo", "Pick", "Place"]
+    assert data["problems"][0]["goal"] == [
+        {"predicate": "on", "args": ["cube", "goal"], "positive": True}
+    ]
+
+
+def test_bad_input_exits_2_with_location_line_and_caret(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.bt"
+    bad.write_text(
+        (DOMAINS / "pick_place.bt")
+        .read_text()
+        .replace("pre:  holding(o), near(l)", "pre:  holdng(o), near(l)")
+    )
+    result = runner.invoke(app, ["check", str(bad)])
+    assert result.exit_code == 2
+    lines = result.stderr.splitlines()
+    assert lines[0] == f"error: {bad}:41:15: unknown predicate 'holdng' (did you mean 'holding'?)"
+    assert lines[1] == "          pre:  holdng(o), near(l)"
+    assert lines[2] == "                ^"
+    assert "Traceback" not in result.output
+
+
+def test_pddl_pair_checks(tmp_path: Path) -> None:
+    domain = tmp_path / "d.pddl"
+    problem = tmp_path / "p.pddl"
+    runner.invoke(app, ["generate", "gripper", "--balls", "3", "--domain-only", "-o", str(domain)])
+    runner.invoke(
+        app, ["generate", "gripper", "--balls", "3", "--problem-only", "-o", str(problem)]
+    )
+    result = runner.invoke(app, ["check", str(domain), str(problem)])
+    assert result.exit_code == 0, result.output
+    assert "gripper_3_s0" in result.stdout
+
+
+def test_missing_file_is_bad_input(tmp_path: Path) -> None:
+    result = runner.invoke(app, ["check", str(tmp_path / "nope.bt")])
+    assert result.exit_code == 2
+    assert "no such file" in result.stderr
