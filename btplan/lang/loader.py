@@ -46,6 +46,8 @@ class Collection:
 
     domains: tuple[Domain, ...]
     problems: tuple[Problem, ...]
+    owners: tuple[int, ...]
+    """For each problem, the index in `domains` of the domain it was checked against."""
     paths: tuple[str, ...]
 
     def task(self, problem: str | None = None) -> Task:
@@ -58,9 +60,9 @@ class Collection:
                 "add 'problem NAME for DOMAIN { objects {...} init {...} goal {...} }' "
                 "or give a problem file",
             )
-        chosen = self.problems[0]
+        index = 0
         if problem is not None:
-            named = [p for p in self.problems if p.name == problem]
+            named = [i for i, p in enumerate(self.problems) if p.name == problem]
             if not named:
                 names = [p.name for p in self.problems]
                 raise InputError(
@@ -68,9 +70,8 @@ class Collection:
                     where,
                     suggest(problem, names) or f"the problems are {', '.join(sorted(names))}",
                 )
-            chosen = named[0]
-        domain = next(d for d in self.domains if d.name == chosen.domain)
-        return Task(domain=domain, problem=chosen)
+            index = named[0]
+        return Task(domain=self.domains[self.owners[index]], problem=self.problems[index])
 
 
 def parse_bt(text: str, path: str) -> BtFile:
@@ -99,40 +100,46 @@ def read_units(path: str) -> tuple[list[DomainSyntax], list[ProblemSyntax]]:
 
 
 def collect(paths: Sequence[str]) -> Collection:
-    """Read every input, check every domain, and check each problem against its domain."""
+    """Read every input, check every domain, and check each problem against its domain.
+
+    A problem binds to the domain of its own file when that has the name it is written
+    for, else to the first input domain of that name: two files may each define their
+    own `blocksworld`, and a file of problems alone finds its domain in another file.
+    """
     if not paths:
         raise InputError("no input files given")
     if sum(1 for p in paths if p == STDIO) > 1:
         raise InputError("standard input ('-') can be read only once")
-    domain_syntax: list[DomainSyntax] = []
-    problem_syntax: list[ProblemSyntax] = []
-    for path in paths:
-        found_domains, found_problems = read_units(path)
-        if not found_domains and not found_problems:
-            raise InputError(
-                "this input holds no domain and no problem",
-                Span(path, 1, 1),
-                "a domain starts with 'domain NAME {', a problem with 'problem NAME for DOMAIN {'",
-            )
-        domain_syntax.extend(found_domains)
-        problem_syntax.extend(found_problems)
-    domains: dict[str, Domain] = {}
-    for d_syntax in domain_syntax:
-        if d_syntax.name.text in domains:
-            raise d_syntax.name.at.error(f"domain '{d_syntax.name.text}' is given twice")
-        domains[d_syntax.name.text] = build_domain(d_syntax)
-    check_unique((p.name for p in problem_syntax), "problem")
-    problems = []
-    for p_syntax in problem_syntax:
-        domain = domains.get(p_syntax.domain.text)
-        if domain is None:
-            raise p_syntax.domain.at.error(
-                f"problem '{p_syntax.name.text}' is for domain '{p_syntax.domain.text}', "
-                "which none of the inputs defines",
-                suggest(p_syntax.domain.text, domains) or "give the domain file too",
-            )
-        problems.append(build_problem(p_syntax, domain))
-    return Collection(tuple(domains.values()), tuple(problems), tuple(paths))
+    files = [_read_nonempty(path) for path in paths]
+    built = [[build_domain(d) for d in domains] for domains, _ in files]
+    everywhere = [d for per_file in built for d in per_file]
+    problems: list[Problem] = []
+    owners: list[int] = []
+    for (_, file_problems), own in zip(files, built, strict=True):
+        check_unique((p.name for p in file_problems), "problem")
+        for syntax in file_problems:
+            wanted = syntax.domain.text
+            domain = next((d for d in [*own, *everywhere] if d.name == wanted), None)
+            if domain is None:
+                raise syntax.domain.at.error(
+                    f"problem '{syntax.name.text}' is for domain '{wanted}', "
+                    "which none of the inputs defines",
+                    suggest(wanted, {d.name for d in everywhere}) or "give the domain file too",
+                )
+            problems.append(build_problem(syntax, domain))
+            owners.append(next(i for i, d in enumerate(everywhere) if d is domain))
+    return Collection(tuple(everywhere), tuple(problems), tuple(owners), tuple(paths))
+
+
+def _read_nonempty(path: str) -> tuple[list[DomainSyntax], list[ProblemSyntax]]:
+    domains, problems = read_units(path)
+    if not domains and not problems:
+        raise InputError(
+            "this input holds no domain and no problem",
+            Span(path, 1, 1),
+            "a domain starts with 'domain NAME {', a problem with 'problem NAME for DOMAIN {'",
+        )
+    return domains, problems
 
 
 def load(paths: Sequence[str], problem: str | None = None) -> Task:
