@@ -7,6 +7,7 @@ Lark reports terminal names (`RBRACE`, `__ANON_3`); a user wants to read "expect
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+from difflib import get_close_matches
 
 from lark import Lark, Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
@@ -21,8 +22,8 @@ MAX_LISTED = 8
 """Beyond this many alternatives the list stops helping; the first ones are shown."""
 
 
-def describe_terminals(parser: Lark, names: Iterable[str], words: Mapping[str, str]) -> str:
-    """`'{', 'types' or a name`: each expected terminal in words, sorted, deduplicated."""
+def expected_words(parser: Lark, names: Iterable[str], words: Mapping[str, str]) -> list[str]:
+    """Each expected terminal in words, deduplicated: quoted symbols, keywords, then kinds."""
     found: set[str] = set()
     for name in names:
         if name == END:
@@ -34,31 +35,39 @@ def describe_terminals(parser: Lark, names: Iterable[str], words: Mapping[str, s
                 pattern = parser.get_terminal(name).pattern
             except KeyError:
                 continue
-            if isinstance(pattern, PatternStr):
-                found.add(f"'{pattern.value}'")
-            else:
-                found.add(name.lower())
-    # quoted symbols first, then keywords, then descriptions, each alphabetically
-    ordered = sorted(
-        found, key=lambda s: (not s.startswith("'"), s.startswith("'") and s[1:2].isalpha(), s)
-    )
-    if len(ordered) > MAX_LISTED:
-        ordered = ordered[:MAX_LISTED] + ["..."]
-    if not ordered:
+            found.add(f"'{pattern.value}'" if isinstance(pattern, PatternStr) else name.lower())
+    return sorted(found, key=lambda s: (not s.startswith("'"), s[1:2].isalpha(), s))
+
+
+def join_words(found: list[str]) -> str:
+    """`'{', 'types' or a name`, cut short when the list stops helping."""
+    if len(found) > MAX_LISTED:
+        found = [*found[:MAX_LISTED], "..."]
+    if not found:
         return "something else"
-    if len(ordered) == 1:
-        return ordered[0]
-    return ", ".join(ordered[:-1]) + " or " + ordered[-1]
+    if len(found) == 1:
+        return found[0]
+    return ", ".join(found[:-1]) + " or " + found[-1]
 
 
-def describe_token(token: Token, words: Mapping[str, str]) -> str:
-    if token.type == END:
-        return "the end of the file"
+def describe_token(token: Token) -> str:
     text = str(token)
-    if len(text) > 30:
-        text = text[:27] + "..."
-    kind = words.get(token.type)
-    return f"'{text}'" if kind is None or not kind.startswith("a") else f"{kind} '{text}'"
+    return f"'{text[:27]}...'" if len(text) > 30 else f"'{text}'"
+
+
+def _hint(token: Token, expected: list[str]) -> str | None:
+    """A likely fix: a misspelt keyword, or a missing comma before a name."""
+    text = str(token)
+    if not text[:1].isalpha():
+        return None
+    keywords = [e.strip("'") for e in expected if e.startswith("'") and e[1:2].isalpha()]
+    near = get_close_matches(text, sorted(keywords), n=1)
+    if near:
+        return f"did you mean '{near[0]}'?"
+    for closing in ("')'", "','"):
+        if closing in expected:
+            return f"is a {closing} missing before it?"
+    return None
 
 
 def syntax_error(
@@ -71,17 +80,20 @@ def syntax_error(
             where = source.end()
         else:
             where = source.at(token.line, token.column or 1)
-        found = describe_token(token, words)
+        expected = expected_words(parser, error.accepts or error.expected, words)
+        if token.type == END:
+            return where.error(f"the file ends too early; expected {join_words(expected)}")
         return where.error(
-            f"unexpected {found}; expected {describe_terminals(parser, error.accepts or error.expected, words)}"
+            f"unexpected {describe_token(token)}; expected {join_words(expected)}",
+            _hint(token, expected),
         )
     if isinstance(error, UnexpectedCharacters):
         char = error.char
         shown = repr(char) if not char.isprintable() or char.isspace() else f"'{char}'"
         where = source.at(error.line, error.column)
-        allowed = describe_terminals(parser, error.allowed or (), words)
+        allowed = join_words(expected_words(parser, error.allowed or (), words))
         return where.error(f"unexpected character {shown}; expected {allowed}")
     if isinstance(error, UnexpectedEOF):
-        expected = describe_terminals(parser, error.expected, words)
+        expected = join_words(expected_words(parser, error.expected, words))
         return source.end().error(f"the file ends too early; expected {expected}")
     return source.start().error(f"cannot read this input: {error}")

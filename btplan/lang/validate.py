@@ -32,6 +32,11 @@ from btplan.model import (
     TypedName,
 )
 
+def a(noun: str) -> str:
+    """`a block`, `an object`: messages read as sentences."""
+    return f"{'an' if noun[:1].lower() in 'aeiou' else 'a'} {noun}"
+
+
 # --- domain ---------------------------------------------------------------------------
 
 
@@ -186,7 +191,7 @@ class _LiteralChecker:
             arg_type = self._arg_type(arg, lit, part)
             if not self.types.related(arg_type, param.type):
                 raise arg.at.error(
-                    f"'{arg.text}' is a {arg_type}, but {predicate.name} expects a {param.type} here"
+                    f"'{arg.text}' is {a(arg_type)}, but {predicate.name} expects {a(param.type)} here"
                 )
         return lit.literal()
 
@@ -275,17 +280,17 @@ class _FactChecker:
 
     def check(self, lit: LiteralSyntax, what: str) -> Literal:
         if lit.is_equality:
-            raise lit.at.error(f"an equality cannot be a{'n' if what[0] in 'aeiou' else ''} {what}")
+            raise lit.at.error(f"an equality cannot be {a(what)}")
         predicate = check_predicate(lit, self.predicates)
         for arg, param in zip(lit.args, predicate.parameters):
             if arg.text not in self.known:
                 raise arg.at.error(
-                    f"unknown object '{arg.text}' in a{'n' if what[0] in 'aeiou' else ''} {what}",
+                    f"unknown object '{arg.text}' in {a(what)}",
                     suggest(arg.text, self.known) or "declare it under 'objects'",
                 )
             arg_type = self.known[arg.text]
             if not self.types.is_subtype(arg_type, param.type):
                 raise arg.at.error(
-                    f"'{arg.text}' is a {arg_type}, but {predicate.name} expects a {param.type} here"
+                    f"'{arg.text}' is {a(arg_type)}, but {predicate.name} expects {a(param.type)} here"
                 )
         return lit.literal()
