@@ -94,6 +94,6 @@ def syntax_error(
         allowed = join_words(expected_words(parser, error.allowed or (), words))
         return where.error(f"unexpected character {shown}; expected {allowed}")
     if isinstance(error, UnexpectedEOF):
-        expected = join_words(expected_words(parser, error.expected, words))
-        return source.end().error(f"the file ends too early; expected {expected}")
+        listed = join_words(expected_words(parser, error.expected, words))
+        return source.end().error(f"the file ends too early; expected {listed}")
     return source.start().error(f"cannot read this input: {error}")

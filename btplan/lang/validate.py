@@ -32,6 +32,7 @@ from btplan.model import (
     TypedName,
 )
 
+
 def a(noun: str) -> str:
     """`a block`, `an object`: messages read as sentences."""
     return f"{'an' if noun[:1].lower() in 'aeiou' else 'a'} {noun}"
