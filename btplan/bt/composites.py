@@ -38,7 +38,8 @@ class _Control(Composite):
         for i in range(start, len(children)):
             status = children[i].tick(world)
             if status is RUNNING or status is stop_on:
-                self._halt_after(i, world)
+                if i + 1 < len(children):  # the last child has nothing right of it
+                    self._halt_after(i, world)
                 self._current = i if status is RUNNING else 0
                 self.status = status
                 return status
@@ -48,9 +49,10 @@ class _Control(Composite):
 
     def _halt_after(self, index: int, world: World) -> None:
         """Halt the children right of the deciding one that are still active."""
-        for child in self._children[index + 1 :]:
-            if child.status is not IDLE:
-                child.halt(world)
+        children = self._children
+        for j in range(index + 1, len(children)):
+            if children[j].status is not IDLE:
+                children[j].halt(world)
 
     def halt(self, world: World) -> None:
         self._current = 0
