@@ -1,0 +1,119 @@
+"""The library's front door: load a task, plan a tree for it.
+
+`plan` runs Algorithm 1 offline against the symbolic world from the problem's
+initial state. Because conflict resolution may reorder parts of the tree after they
+ran, a tree that reached the goal once is run again from the initial state; runs
+repeat (the tree keeps growing) until one reaches the goal with no expansion at all.
+So every tree `plan` returns reaches the goal when ticked from the initial state, and
+`executed` is the action sequence of that last, expansion-free run.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+
+from btplan.blend import BlendedLoop, Expansion, TickReport
+from btplan.bt import BehaviorTree
+from btplan.errors import BudgetExceededError, PlanningError
+from btplan.model import GroundAction, Task
+from btplan.planner import PlannerOptions
+from btplan.worlds.symbolic import SymbolicWorld
+
+DEFAULT_MAX_TICKS = 100_000
+DEFAULT_MAX_ROUNDS = 4
+
+
+def load(*paths: str, problem: str | None = None) -> Task:
+    """Read a domain and a problem (.bt or .pddl, one file or two) into a Task."""
+    from btplan.lang import load as load_paths
+
+    return load_paths(list(paths), problem)
+
+
+@dataclass
+class PlanStats:
+    expansions: int
+    conflicts_resolved: int
+    moves: int
+    tree_size: int
+    actions_executed: int
+    ticks: int
+    rounds: int
+    seconds: float
+
+
+@dataclass
+class PlanResult:
+    """The final tree, the actions its last run executed, and what planning cost."""
+
+    tree: BehaviorTree
+    executed: list[GroundAction]
+    stats: PlanStats
+    expansions: list[Expansion] = field(default_factory=list)
+
+
+def plan(
+    task: Task,
+    *,
+    seed: int = 0,
+    max_expansions: int | None = None,
+    max_ticks: int = DEFAULT_MAX_TICKS,
+    timeout: float | None = None,
+    options: PlannerOptions | None = None,
+    on_expansion: Callable[[BehaviorTree, Expansion], None] | None = None,
+) -> PlanResult:
+    """Backchain a BT for `task` by planning and acting in the symbolic world.
+
+    Raises a PlanningError (NoAchieverError, UnresolvableConflictError,
+    NoProgressError, BudgetExceededError) with a reason when no tree is found.
+    """
+    opts = options or PlannerOptions()
+    if max_expansions is not None:
+        opts = replace(opts, max_expansions=max_expansions)
+    started = time.perf_counter()
+    deadline = None if timeout is None else started + timeout
+    world = SymbolicWorld(task, seed=seed)
+    loop = BlendedLoop(task, world, opts)
+    ticks_left = max_ticks
+
+    def watch(report: TickReport) -> None:
+        if deadline is not None and time.perf_counter() > deadline:
+            raise BudgetExceededError(f"the time budget ({timeout:g} s) ran out")
+        if on_expansion is not None:
+            for expansion in report.expansions:
+                on_expansion(loop.tree, expansion)
+
+    for rounds in range(1, DEFAULT_MAX_ROUNDS + 1):
+        if rounds > 1:
+            world = SymbolicWorld(task, seed=seed)
+            loop.use_world(world)
+        result = loop.run(ticks_left, on_tick=watch)
+        ticks_left -= result.ticks
+        if not result.reached:
+            raise BudgetExceededError(result.reason)
+        if not result.expansions:
+            return PlanResult(
+                tree=loop.tree,
+                executed=list(world.executed),
+                stats=_stats(loop, world, rounds, time.perf_counter() - started),
+                expansions=list(loop.expansions),
+            )
+    raise PlanningError(
+        f"after {DEFAULT_MAX_ROUNDS} runs from the initial state the tree still needed "
+        "expansions; the order it found depends on the state it was built in"
+    )
+
+
+def _stats(loop: BlendedLoop, world: SymbolicWorld, rounds: int, seconds: float) -> PlanStats:
+    return PlanStats(
+        expansions=len(loop.expansions),
+        conflicts_resolved=sum(e.conflicts_resolved for e in loop.expansions),
+        moves=sum(e.moves for e in loop.expansions),
+        tree_size=len(loop.tree.nodes()),
+        actions_executed=len(world.executed),
+        ticks=loop.ticks,
+        rounds=rounds,
+        seconds=seconds,
+    )

@@ -1,0 +1,205 @@
+"""Algorithm 1 as an acting loop: tick the tree against a world, expand it when it fails.
+
+The tree is never rebuilt: it starts as the goal conditions and only grows, one atomic
+BT per failing tick, with conflicts resolved right after each expansion. All world
+access of planning lives here; the planner steps in btplan.planner are plain functions.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from btplan.bt import FAILURE, SUCCESS, Action, BehaviorTree, LeafKey, Node, Status
+from btplan.errors import BudgetExceededError, NoAchieverError, NoProgressError
+from btplan.model import Atom, GroundAction, GroundLiteral, Task
+from btplan.planner import (
+    AchieverIndex,
+    PlannerOptions,
+    PlanningWorld,
+    expand_tree,
+    failed_conditions,
+    initial_tree,
+    literal_of,
+    resolve_conflicts,
+)
+from btplan.planner.expand import non_circular, pursued
+
+
+@dataclass
+class Expansion:
+    """One run of ExpandTree: which condition, by which actions, and how it was placed."""
+
+    tick: int
+    condition: str
+    achievers: list[str]
+    conflicts_resolved: int
+    moves: int
+
+
+@dataclass
+class TickReport:
+    tick: int
+    status: Status
+    expansions: list[Expansion] = field(default_factory=list)
+
+
+@dataclass
+class RunResult:
+    reached: bool
+    ticks: int
+    expansions: list[Expansion]
+    tree: BehaviorTree
+    reason: str
+
+
+class BlendedLoop:
+    """Plans and acts at once (the paper's Algorithm 1) against any PlanningWorld.
+
+    `tick()` ticks once; on FAILURE it expands the first failed condition found
+    breadth first (Algorithm 3), substitutes its atomic BT (Algorithm 2) and moves it
+    until no conflict is left. A condition without achievers is skipped in favour of
+    the next failed one; if none has achievers, NoAchieverError names them. When the
+    world comes back to a state it was in, with no expansion in between and no
+    outside change, the loop is going round in circles: NoProgressError.
+    """
+
+    def __init__(
+        self, task: Task, world: PlanningWorld, options: PlannerOptions | None = None
+    ) -> None:
+        self.task = task
+        self.world = world
+        self.options = options or PlannerOptions()
+        self.tree = initial_tree(task)
+        self.index = AchieverIndex(task, self.options)
+        self.grounding: dict[LeafKey, GroundAction] = {}
+        self.expansions: list[Expansion] = []
+        self.ticks = 0
+        self._expanded: set[Node] = set()
+        self._dead: set[Node] = set()
+        self._seen: set[tuple[frozenset[Atom], int]] = set()
+        self._last_state: frozenset[Atom] | None = None
+        self._stalls = 0
+
+    def use_world(self, world: PlanningWorld) -> None:
+        """Keep the tree and continue against another world (a fresh run from the start)."""
+        self.tree.halt(self.world)
+        self.world = world
+        self._seen.clear()
+        self._last_state = None
+        self._stalls = 0
+
+    # --- one tick ----------------------------------------------------------------------
+
+    def tick(self) -> TickReport:
+        before = self.world.facts()
+        if before != self._last_state:
+            self._seen.clear()  # an outside change: a repeated state is no longer a loop
+        self.ticks += 1
+        status = self.tree.tick(self.world)
+        report = TickReport(self.ticks, status)
+        if status is FAILURE:
+            expansion = self._expand()
+            if expansion is not None:
+                report.expansions.append(expansion)
+                self._stalls = 0
+            else:
+                self._stall(before)
+        after = self.world.facts()
+        if after != before and status is not SUCCESS:
+            key = (after, len(self.expansions))
+            if key in self._seen:
+                raise NoProgressError(self._loop_reason())
+            self._seen.add(key)
+        self._last_state = after
+        return report
+
+    def _expand(self) -> Expansion | None:
+        state = self.world.facts()
+        missing: list[str] = []
+        for node in failed_conditions(self.tree, self._expanded):
+            literal = literal_of(node)
+            assert literal is not None
+            achievers = non_circular(
+                self.index.achievers(literal, state, self.world.refine), pursued(node)
+            )
+            self._expanded.add(node)
+            if not achievers:
+                self._dead.add(node)
+                missing.append(str(literal))
+                continue
+            if len(self.expansions) >= self.options.max_expansions:
+                raise BudgetExceededError(
+                    f"the expansion budget ({self.options.max_expansions}) ran out "
+                    f"while {literal} still fails"
+                )
+            return self._apply(node, literal, achievers)
+        if missing:
+            raise NoAchieverError(
+                "no action can make " + " or ".join(sorted(set(missing))) + " hold"
+            )
+        return None
+
+    def _apply(
+        self, node: Node, literal: GroundLiteral, achievers: list[GroundAction]
+    ) -> Expansion:
+        for action in achievers:
+            self.grounding[action.key] = action
+        subtree = expand_tree(self.tree, node, achievers, self.task)
+        resolution = resolve_conflicts(
+            self.tree, subtree, self.grounding, self.options.reorder_goals
+        )
+        expansion = Expansion(
+            tick=self.ticks,
+            condition=str(literal),
+            achievers=[str(a) for a in achievers],
+            conflicts_resolved=len(resolution.conflicts),
+            moves=resolution.moves,
+        )
+        self.expansions.append(expansion)
+        return expansion
+
+    def _stall(self, state: frozenset[Atom]) -> None:
+        """The tree failed with nothing to expand (an action failed): retry, a few times."""
+        self._stalls += 1
+        if self._stalls > self.options.stall_limit:
+            raise NoProgressError(
+                f"the tree failed {self._stalls} ticks in a row with no condition left "
+                f"to expand; failing actions: {', '.join(self._failing_actions()) or 'none'}"
+            )
+
+    def _failing_actions(self) -> list[str]:
+        return sorted(
+            {n.name for n in self.tree.root.walk() if isinstance(n, Action) and n.status is FAILURE}
+        )
+
+    def _loop_reason(self) -> str:
+        recent = [str(a) for a in getattr(self.world, "executed", [])[-6:]]
+        tail = f"; last actions: {', '.join(recent)}" if recent else ""
+        return (
+            "the world came back to an earlier state with no new expansion "
+            f"(after {len(self.expansions)} expansions){tail}"
+        )
+
+    # --- many ticks --------------------------------------------------------------------
+
+    def run(
+        self,
+        max_ticks: int,
+        before_tick: Callable[[int], None] | None = None,
+        on_tick: Callable[[TickReport], None] | None = None,
+    ) -> RunResult:
+        """Tick until the tree succeeds or `max_ticks` ticks were spent."""
+        start = len(self.expansions)
+        for i in range(max_ticks):
+            if before_tick is not None:
+                before_tick(self.ticks + 1)
+            report = self.tick()
+            if on_tick is not None:
+                on_tick(report)
+            if report.status is SUCCESS:
+                return RunResult(True, i + 1, self.expansions[start:], self.tree, "goal reached")
+        return RunResult(
+            False, max_ticks, self.expansions[start:], self.tree,
+            f"the goal was not reached within {max_ticks} ticks",
+        )

@@ -1,0 +1,102 @@
+"""Finding the grounded actions that make a condition true: GetAllActTemplatesFor.
+
+The domain is indexed by the predicate and sign of each effect, so the achievers of
+a condition are found without scanning every action (Algorithm 2, line 2). Each
+matching effect is unified with the condition, the remaining parameters are bound
+(`grounding.bindings`), and the groundings are ranked best first.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+from btplan.model import (
+    ActionTemplate,
+    Atom,
+    GroundAction,
+    GroundLiteral,
+    Literal,
+    Task,
+    instantiate,
+)
+from btplan.planner.grounding import bindings, unify
+from btplan.planner.heuristic import RelaxedModel
+from btplan.planner.options import PlannerOptions
+from btplan.planner.protocol import Refiner
+
+
+class AchieverIndex:
+    """Effects of the domain indexed by (predicate, sign), with a lazily built h_add model."""
+
+    def __init__(self, task: Task, options: PlannerOptions | None = None) -> None:
+        self.task = task
+        self.options = options or PlannerOptions()
+        self._by_effect: dict[tuple[str, bool], list[tuple[ActionTemplate, Literal]]] = {}
+        for template in task.domain.actions:
+            for effect in template.effects:
+                key = (effect.predicate, effect.positive)
+                self._by_effect.setdefault(key, []).append((template, effect))
+        self._relaxed: RelaxedModel | None = None
+
+    @property
+    def relaxed(self) -> RelaxedModel:
+        if self._relaxed is None:
+            self._relaxed = RelaxedModel(self.task)
+        return self._relaxed
+
+    def achievers(
+        self, condition: GroundLiteral, state: frozenset[Atom], refine: Refiner | None
+    ) -> list[GroundAction]:
+        """Grounded actions whose effects make `condition` hold, best first, bounded.
+
+        Ranking (the paper leaves the order open; its Remark suggests cheap first):
+        cost plus, with the heuristic on, the h_add estimate of the preconditions;
+        then the number of preconditions that fail now; then the name, for ties.
+        """
+        found: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
+        for template, effect in self._by_effect.get((condition.atom.predicate, condition.positive), []):
+            partial = unify(self.task, template, effect, condition.atom)
+            if partial is None:
+                continue
+            for binding in bindings(
+                self.task, template, partial, state, refine, self.options.max_bindings
+            ):
+                args = tuple(binding[p.name] for p in template.parameters)
+                action = instantiate(template, args)
+                if _makes_true(action, condition) and action.key not in found:
+                    found[action.key] = action
+        ranked = sorted(found.values(), key=lambda a: self._rank(a, state))
+        if self.options.heuristic:
+            ranked = [a for a in ranked if self._rank(a, state)[0] < math.inf]
+        return ranked[: self.options.max_alternatives]
+
+    def _rank(self, action: GroundAction, state: frozenset[Atom]) -> tuple[float, int, str]:
+        failing = sum(1 for p in action.preconditions if not p.holds(state))
+        estimate = 0.0
+        if self.options.heuristic:
+            estimate = self._estimate(action, state)
+        return (action.cost + estimate, failing, str(action))
+
+    def _estimate(self, action: GroundAction, state: frozenset[Atom]) -> float:
+        atoms = [p.atom for p in action.preconditions if p.positive and p.atom not in state]
+        if not atoms:
+            return 0.0
+        known = self.task.object_types
+        if all(a in known for atom in atoms for a in atom.args):
+            return self.relaxed.estimate(state, atoms)
+        # Values a backend refined (poses, trajectories) are unknown to the relaxed
+        # model; count such preconditions instead of calling them unreachable.
+        return float(len(atoms))
+
+
+def _makes_true(action: GroundAction, condition: GroundLiteral) -> bool:
+    if condition in action.preconditions:
+        return False  # needs what it would achieve: never useful in a fallback
+    if condition.positive:
+        return condition.atom in action.add
+    return action.deletes(condition.atom)
+
+
+def describe(actions: Sequence[GroundAction]) -> list[str]:
+    return [str(a) for a in actions]

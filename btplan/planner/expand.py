@@ -1,0 +1,124 @@
+"""Atomic BTs, ExpandTree (Algorithm 2) and GetConditionToExpand (Algorithm 3).
+
+The functions here build and rewire tree nodes only; they neither tick nor look at a
+world. A positive condition is a Condition leaf; a negative one (`not holding(cube)`)
+is an Inverter over the Condition leaf, and that Inverter is what gets expanded.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Iterable, Sequence
+
+from btplan.bt import FAILURE, Action, BehaviorTree, Condition, Fallback, Node
+from btplan.bt import Sequence as SequenceNode
+from btplan.bt.decorators import Inverter
+from btplan.model import Atom, GroundAction, GroundLiteral, Task
+
+
+def condition_node(literal: GroundLiteral, task: Task) -> Node:
+    """The tree leaf for a literal; ports are the predicate's parameter names."""
+    predicate = task.domain.predicate_map.get(literal.atom.predicate)
+    ports = (
+        tuple(p.name for p in predicate.parameters)
+        if predicate is not None and predicate.arity == len(literal.atom.args)
+        else None
+    )
+    leaf = Condition(literal.atom.predicate, literal.atom.args, ports)
+    return leaf if literal.positive else Inverter(leaf)
+
+
+def action_node(action: GroundAction) -> Action:
+    return Action(action.name, action.args, action.port_names)
+
+
+def literal_of(node: Node) -> GroundLiteral | None:
+    """The literal a condition node checks, or None for any other node."""
+    if type(node) is Condition:
+        return GroundLiteral(Atom(node.ident, node.args), True)
+    if type(node) is Inverter and node.children and type(node.children[0]) is Condition:
+        child = node.children[0]
+        assert isinstance(child, Condition)
+        return GroundLiteral(Atom(child.ident, child.args), False)
+    return None
+
+
+def initial_tree(task: Task) -> BehaviorTree:
+    """Algorithm 1, lines 1-3: the goal conditions in a Sequence; one goal stands alone."""
+    goals = [condition_node(g, task) for g in task.goal_literals]
+    root: Node = goals[0] if len(goals) == 1 else SequenceNode(goals)
+    return BehaviorTree(root)
+
+
+def atomic_bt(condition: Node, achievers: Sequence[GroundAction], task: Task) -> Fallback:
+    """Fallback(C, Sequence(pre(A1)..., A1), ...): the paper's Figure 3.
+
+    `condition` itself becomes the first child, so it must be detached already.
+    """
+    alternatives: list[Node] = [condition]
+    for action in achievers:
+        steps = [condition_node(p, task) for p in action.preconditions]
+        alternatives.append(SequenceNode([*steps, action_node(action)]))
+    return Fallback(alternatives)
+
+
+def expand_tree(
+    tree: BehaviorTree, condition: Node, achievers: Sequence[GroundAction], task: Task
+) -> Fallback:
+    """Algorithm 2: replace the failed condition by its atomic BT; return the new subtree."""
+    parent = condition.parent
+    if parent is None:
+        subtree = atomic_bt(condition, achievers, task)
+        tree.root = subtree
+        return subtree
+    index = parent.remove(condition)
+    subtree = atomic_bt(condition, achievers, task)
+    parent.insert(index, subtree)
+    return subtree
+
+
+def pursued(condition: Node) -> set[GroundLiteral]:
+    """The condition and every condition its ancestors' Fallbacks are trying to achieve.
+
+    An achiever that needs one of these is circular (to hold a, clear a; to clear a,
+    put a down, which needs holding a) and can never help.
+    """
+    goals: set[GroundLiteral] = set()
+    own = literal_of(condition)
+    if own is not None:
+        goals.add(own)
+    node = condition.parent
+    while node is not None:
+        if isinstance(node, Fallback) and node.children:
+            first = literal_of(node.children[0])
+            if first is not None:
+                goals.add(first)
+        node = node.parent
+    return goals
+
+
+def non_circular(achievers: Sequence[GroundAction], goals: set[GroundLiteral]) -> list[GroundAction]:
+    """Achievers that need none of the conditions already being pursued above."""
+    return [a for a in achievers if not any(p in goals for p in a.preconditions)]
+
+
+def conditions_bfs(root: Node) -> Iterable[Node]:
+    """Condition nodes in breadth-first order, left to right (GetConditionsBFS)."""
+    queue: deque[Node] = deque([root])
+    while queue:
+        node = queue.popleft()
+        if literal_of(node) is not None:
+            yield node
+            continue
+        queue.extend(node.children)
+
+
+def failed_conditions(tree: BehaviorTree, expanded: set[Node]) -> list[Node]:
+    """Conditions that failed on the last tick and were not expanded yet, BFS order."""
+    return [n for n in conditions_bfs(tree.root) if n.status is FAILURE and n not in expanded]
+
+
+def get_condition_to_expand(tree: BehaviorTree, expanded: set[Node]) -> Node | None:
+    """Algorithm 3: the first failed, not yet expanded condition in BFS order."""
+    found = failed_conditions(tree, expanded)
+    return found[0] if found else None

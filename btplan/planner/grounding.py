@@ -1,0 +1,129 @@
+"""Binding template parameters to objects: the refinement step of the paper.
+
+Parameters are bound one at a time; after each, every `where` constraint and every
+static precondition whose parameters are all bound is checked, so a wrong choice is
+cut as early as possible instead of after the full cross product. Static predicates
+(no action changes them) are read from the given state; `where` constraints are too,
+as the language defines them as binding constraints evaluated now. A `refined`
+parameter is asked of the refiner (the world backend) instead of enumerated.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator, Mapping
+
+from btplan.model import EQUALITY, ActionTemplate, Atom, Literal, Parameter, Task
+from btplan.planner.protocol import Refiner
+
+Candidates = Callable[[ActionTemplate, Mapping[str, str], Parameter], list[str]]
+
+
+def static_checks(task: Task, template: ActionTemplate) -> tuple[Literal, ...]:
+    """The literals that filter bindings: `where` constraints and static preconditions."""
+    static = task.domain.changed_predicates
+    pre = tuple(
+        p for p in template.preconditions if p.predicate == EQUALITY or p.predicate not in static
+    )
+    return template.constraints + pre
+
+
+def bindings(
+    task: Task,
+    template: ActionTemplate,
+    partial: Mapping[str, str],
+    state: frozenset[Atom],
+    refine: Refiner | None,
+    limit: int,
+) -> Iterator[dict[str, str]]:
+    """Complete bindings of `template` extending `partial`, depth first, at most `limit`.
+
+    Objects come sorted by name and refined values in the refiner's order, so the
+    enumeration is deterministic.
+    """
+    checks = static_checks(task, template)
+    names = {p.name for p in template.parameters}
+    order = [p for p in template.parameters if p.name not in partial]
+    # Enumerate ordinary parameters first: refiners usually need them bound.
+    order.sort(key=lambda p: p.refined)
+    count = 0
+
+    def options(binding: Mapping[str, str], parameter: Parameter) -> list[str]:
+        if parameter.refined and refine is not None:
+            return refine(template, binding, parameter)
+        return list(task.objects_of(parameter.type))
+
+    def extend(binding: dict[str, str], depth: int) -> Iterator[dict[str, str]]:
+        nonlocal count
+        if depth == len(order):
+            count += 1
+            yield dict(binding)
+            return
+        parameter = order[depth]
+        for value in options(binding, parameter):
+            binding[parameter.name] = value
+            if _consistent(checks, binding, names, parameter.name, state):
+                yield from extend(binding, depth + 1)
+                if count >= limit:
+                    del binding[parameter.name]
+                    return
+            del binding[parameter.name]
+
+    start = dict(partial)
+    if not _consistent(checks, start, names, None, state):
+        return
+    yield from extend(start, 0)
+
+
+def _consistent(
+    checks: tuple[Literal, ...],
+    binding: Mapping[str, str],
+    names: set[str],
+    just_bound: str | None,
+    state: frozenset[Atom],
+) -> bool:
+    """True when every check that became decidable with `just_bound` holds."""
+    for literal in checks:
+        if just_bound is not None and just_bound not in literal.args:
+            continue
+        if any(a in names and a not in binding for a in literal.args):
+            continue
+        args = tuple(binding.get(a, a) for a in literal.args)
+        if literal.predicate == EQUALITY:
+            value = args[0] == args[1]
+        else:
+            value = Atom(literal.predicate, args) in state
+        if value is not literal.positive:
+            return False
+    return True
+
+
+def unify(
+    task: Task, template: ActionTemplate, effect: Literal, atom: Atom
+) -> dict[str, str] | None:
+    """The partial binding under which `effect` becomes `atom`, or None if none does.
+
+    Bound objects must have the parameter's type; `_` in an effect matches anything.
+    """
+    if effect.predicate != atom.predicate or len(effect.args) != len(atom.args):
+        return None
+    types = {p.name: p for p in template.parameters}
+    binding: dict[str, str] = {}
+    for name, value in zip(effect.args, atom.args):
+        if name == "_":
+            continue
+        parameter = types.get(name)
+        if parameter is None:
+            if name != value:
+                return None
+            continue
+        if binding.get(name, value) != value:
+            return None
+        if not parameter.refined and not _has_type(task, value, parameter.type):
+            return None
+        binding[name] = value
+    return binding
+
+
+def _has_type(task: Task, value: str, type_name: str) -> bool:
+    declared = task.object_types.get(value)
+    return declared is not None and task.domain.is_subtype(declared, type_name)

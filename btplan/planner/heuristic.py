@@ -1,0 +1,79 @@
+"""A relaxed-reachability estimate (h_add) over the grounded domain.
+
+The paper orders achievers arbitrarily ("we do not investigate which action is the
+optimal one"). On classic domains that first match is often a poor choice, so btplan
+ranks achievers by the additive cost of reaching their preconditions when delete
+effects are ignored (Bonet and Geffner's h_add), and drops achievers whose
+preconditions cannot be reached at all.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from collections.abc import Iterable
+
+from btplan.model import Atom, GroundAction, Task, instantiate
+from btplan.planner.grounding import bindings
+
+
+class RelaxedModel:
+    """Every grounding of the domain that static facts allow, indexed for h_add."""
+
+    def __init__(self, task: Task, limit: int = 200_000) -> None:
+        self.actions: list[GroundAction] = []
+        for template in task.domain.actions:
+            for binding in bindings(task, template, {}, task.initial_state, None, limit):
+                args = tuple(binding[p.name] for p in template.parameters)
+                self.actions.append(instantiate(template, args))
+        self._pre: list[tuple[Atom, ...]] = [
+            tuple(p.atom for p in a.preconditions if p.positive) for a in self.actions
+        ]
+        self._by_pre: dict[Atom, list[int]] = {}
+        for i, pre in enumerate(self._pre):
+            for atom in set(pre):
+                self._by_pre.setdefault(atom, []).append(i)
+        self._cache_state: frozenset[Atom] | None = None
+        self._cache: dict[Atom, float] = {}
+
+    def costs(self, state: frozenset[Atom]) -> dict[Atom, float]:
+        """h_add cost of every reachable atom from `state` (generalised Dijkstra)."""
+        if state == self._cache_state:
+            return self._cache
+        cost: dict[Atom, float] = {a: 0.0 for a in state}
+        waiting = [len(set(pre)) for pre in self._pre]
+        queue: list[tuple[float, Atom]] = [(0.0, a) for a in sorted(state)]
+        heapq.heapify(queue)
+        done: set[Atom] = set()
+        fired = [False] * len(self.actions)
+        for i, n in enumerate(waiting):
+            if n == 0:
+                fired[i] = True
+                self._relax(i, 0.0, cost, queue)
+        while queue:
+            value, atom = heapq.heappop(queue)
+            if atom in done or value > cost.get(atom, math.inf):
+                continue
+            done.add(atom)
+            for i in self._by_pre.get(atom, ()):
+                waiting[i] -= 1
+                if waiting[i] == 0 and not fired[i]:
+                    fired[i] = True
+                    total = sum(cost[p] for p in set(self._pre[i]))
+                    self._relax(i, total, cost, queue)
+        self._cache_state, self._cache = state, cost
+        return cost
+
+    def _relax(
+        self, i: int, pre_cost: float, cost: dict[Atom, float], queue: list[tuple[float, Atom]]
+    ) -> None:
+        value = pre_cost + self.actions[i].cost
+        for atom in self.actions[i].add:
+            if value < cost.get(atom, math.inf):
+                cost[atom] = value
+                heapq.heappush(queue, (value, atom))
+
+    def estimate(self, state: frozenset[Atom], atoms: Iterable[Atom]) -> float:
+        """Sum of h_add costs; infinite when some atom is unreachable."""
+        cost = self.costs(state)
+        return sum(cost.get(a, math.inf) for a in atoms)

@@ -1,0 +1,25 @@
+"""The knobs of the planner, with defaults that work on the shipped domains."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True, slots=True)
+class PlannerOptions:
+    """Bounds and strategy switches for backchaining.
+
+    `max_alternatives` bounds the fallback width of one atomic BT (the paper keeps
+    every achiever; real domains have too many groundings). `max_bindings` bounds the
+    groundings enumerated per action template before ranking. `heuristic` ranks
+    achievers by a relaxed-reachability estimate (h_add) instead of the first match.
+    `reorder_goals` lets conflict resolution move an enclosing subtree when moving
+    the new subtree alone, as the paper does, finds no conflict-free place.
+    """
+
+    max_expansions: int = 1000
+    max_alternatives: int = 4
+    max_bindings: int = 64
+    heuristic: bool = True
+    reorder_goals: bool = True
+    stall_limit: int = 3

@@ -1,0 +1,29 @@
+"""What the planner needs from a world beyond ticking: the state and refinement.
+
+Structural: a world satisfies it without importing the planner.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from typing import Protocol
+
+from btplan.bt import World
+from btplan.model import ActionTemplate, Atom, Parameter
+
+Refiner = Callable[[ActionTemplate, Mapping[str, str], Parameter], list[str]]
+"""Supplies values for a `refined` parameter, best first (the paper's RefineActions)."""
+
+
+class PlanningWorld(World, Protocol):
+    """A world the acting loop can plan against."""
+
+    def facts(self) -> frozenset[Atom]:
+        """The current state as ground atoms."""
+        ...
+
+    def refine(
+        self, template: ActionTemplate, binding: Mapping[str, str], parameter: Parameter
+    ) -> list[str]:
+        """Values for `parameter` under `binding`, best first, deterministic."""
+        ...

@@ -1,0 +1,180 @@
+"""A symbolic world: a set of ground atoms that grounded actions change.
+
+It is the world offline planning runs in (`btplan plan`) and the one the acting loop is
+tested against. Actions take `duration` ticks: RUNNING until the last one, then their
+effects are applied and they return SUCCESS. An action whose preconditions stop
+holding while it runs returns FAILURE, as a real controller would abort. Failures can
+also be injected, one by one (`fail_next`) or with a seeded probability per template,
+to exercise the reactivity the paper's Problem 1 asks for.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Mapping
+
+from btplan.bt import FAILURE, RUNNING, SUCCESS, LeafKey, Status
+from btplan.errors import WorldError
+from btplan.model import (
+    EQUALITY,
+    ActionTemplate,
+    Atom,
+    GroundAction,
+    Literal,
+    Parameter,
+    Task,
+    instantiate,
+)
+
+
+class SymbolicWorld:
+    """The current state as a set of atoms, plus the bookkeeping of the robot's actions.
+
+    `executed` lists the actions the robot completed, in order; `started`, `halted`
+    and `failed` record the rest of each action's life, for tests and traces.
+    """
+
+    def __init__(
+        self,
+        task: Task,
+        *,
+        seed: int = 0,
+        failure_probability: Mapping[str, float] | None = None,
+    ) -> None:
+        self.task = task
+        self._state: set[Atom] = set(task.initial_state)
+        self._rng = random.Random(seed)
+        self._failure_probability = dict(failure_probability or {})
+        self._templates = task.domain.action_map
+        self._grounded: dict[LeafKey, GroundAction] = {}
+        self._remaining: dict[LeafKey, int] = {}
+        self._fail_next: list[tuple[str, tuple[str, ...] | None]] = []
+        self.executed: list[GroundAction] = []
+        self.started: list[GroundAction] = []
+        self.halted: list[GroundAction] = []
+        self.failed: list[GroundAction] = []
+
+    # --- the state ---------------------------------------------------------------------
+
+    def facts(self) -> frozenset[Atom]:
+        return frozenset(self._state)
+
+    def set_fact(self, atom: Atom) -> None:
+        """An external change: `atom` becomes true."""
+        self._state.add(Atom(atom[0], tuple(atom[1])))
+
+    def clear_fact(self, atom: Atom) -> None:
+        """An external change: `atom` becomes false."""
+        self._state.discard(Atom(atom[0], tuple(atom[1])))
+
+    def apply_action(self, action: GroundAction) -> None:
+        """An external agent performs `action`: its effects, whatever the preconditions."""
+        self._state = set(action.apply(frozenset(self._state)))
+
+    def fail_next(self, action_name: str, args: tuple[str, ...] | None = None) -> None:
+        """Make the next tick of a matching action (any arguments when None) return FAILURE."""
+        self._fail_next.append((action_name, None if args is None else tuple(args)))
+
+    def ground(self, key: LeafKey) -> GroundAction:
+        """The grounded action an Action leaf with this key stands for."""
+        action = self._grounded.get(key)
+        if action is None:
+            name, args = key
+            template = self._templates.get(name)
+            if template is None:
+                raise WorldError(f"the domain has no action named {name!r}")
+            try:
+                action = instantiate(template, tuple(args))
+            except ValueError as error:
+                raise WorldError(str(error)) from None
+            self._grounded[key] = action
+        return action
+
+    # --- btplan.bt.World ---------------------------------------------------------------
+
+    def check(self, key: LeafKey) -> bool:
+        predicate, args = key
+        if predicate == EQUALITY:
+            return len(args) == 2 and args[0] == args[1]
+        return key in self._state
+
+    def start(self, key: LeafKey) -> Status:
+        action = self.ground(key)
+        self.started.append(action)
+        self._remaining[key] = action.duration
+        return self._advance(key, action)
+
+    def step(self, key: LeafKey) -> Status:
+        action = self.ground(key)
+        if key not in self._remaining:
+            # Stepped without a start (a tree built mid-action): treat it as a start.
+            self.started.append(action)
+            self._remaining[key] = action.duration
+        return self._advance(key, action)
+
+    def halt(self, key: LeafKey) -> None:
+        if self._remaining.pop(key, None) is not None:
+            self.halted.append(self.ground(key))
+
+    def _advance(self, key: LeafKey, action: GroundAction) -> Status:
+        """One tick of a running action: fail, keep running, or finish and apply effects."""
+        if self._take_injected_failure(action) or not action.applicable(self._state):
+            return self._fail(key, action)
+        probability = self._failure_probability.get(action.name, 0.0)
+        if probability > 0.0 and self._rng.random() < probability:
+            return self._fail(key, action)
+        left = self._remaining[key] - 1
+        if left > 0:
+            self._remaining[key] = left
+            return RUNNING
+        del self._remaining[key]
+        self._state = set(action.apply(frozenset(self._state)))
+        self.executed.append(action)
+        return SUCCESS
+
+    def _fail(self, key: LeafKey, action: GroundAction) -> Status:
+        self._remaining.pop(key, None)
+        self.failed.append(action)
+        return FAILURE
+
+    def _take_injected_failure(self, action: GroundAction) -> bool:
+        for i, (name, args) in enumerate(self._fail_next):
+            if name == action.name and (args is None or args == action.args):
+                del self._fail_next[i]
+                return True
+        return False
+
+    # --- refinement (the planner's RefineActions) -----------------------------------------
+
+    def refine(
+        self, template: ActionTemplate, binding: Mapping[str, str], parameter: Parameter
+    ) -> list[str]:
+        """Objects of the parameter's type that satisfy the template's `where` constraints.
+
+        Constraints that mention other, still unbound parameters do not filter here;
+        the planner checks them once those are bound. Sorted by name, so the answer
+        is the same on every run.
+        """
+        out: list[str] = []
+        for candidate in self.task.objects_of(parameter.type):
+            trial = dict(binding)
+            trial[parameter.name] = candidate
+            if all(self._holds(c, trial) for c in _decided(template, trial)):
+                out.append(candidate)
+        return out
+
+    def _holds(self, literal: Literal, binding: Mapping[str, str]) -> bool:
+        args = tuple(binding.get(a, a) for a in literal.args)
+        if literal.predicate == EQUALITY:
+            value = args[0] == args[1]
+        else:
+            value = Atom(literal.predicate, args) in self._state
+        return value is literal.positive
+
+
+def _decided(template: ActionTemplate, binding: Mapping[str, str]) -> list[Literal]:
+    """The constraints whose parameters are all bound; constants count as bound."""
+    names = {p.name for p in template.parameters}
+    return [
+        c for c in template.constraints if all(a in binding or a not in names for a in c.args)
+    ]

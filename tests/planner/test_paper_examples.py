@@ -1,0 +1,96 @@
+"""The paper's Examples 1 and 2: tree structure after each expansion, and execution."""
+
+from __future__ import annotations
+
+from btplan.blend import BlendedLoop
+from btplan.lang import load
+from btplan.model import Atom
+from btplan.worlds.symbolic import SymbolicWorld
+from tests.planner.helpers import DOMAINS, shape
+
+MOVE_CUBE = ("?", "near(cube)", ("->", "free(tau_cube)", "[MoveTo(cube, tau_cube)]"))
+HOLD_CUBE = ("?", "holding(cube)", ("->", MOVE_CUBE, "hand_empty", "[Pick(cube)]"))
+MOVE_GOAL = ("?", "near(goal)", ("->", "free(tau_goal)", "[MoveTo(goal, tau_goal)]"))
+FIGURE_7 = ("?", "on(cube, goal)", ("->", HOLD_CUBE, MOVE_GOAL, "[Place(cube, goal)]"))
+
+
+def loop_for(name: str) -> tuple[BlendedLoop, SymbolicWorld]:
+    task = load([str(DOMAINS / name)])
+    world = SymbolicWorld(task)
+    return BlendedLoop(task, world), world
+
+
+def test_example_1_grows_the_trees_of_figure_6_then_7() -> None:
+    loop, world = loop_for("pick_place.bt")
+    assert shape(loop.tree.root) == "on(cube, goal)"  # one goal: no Sequence around it
+    trees = []
+    while True:
+        report = loop.tick()
+        if report.expansions:
+            trees.append(shape(loop.tree.root))
+        if report.status.value == "SUCCESS":
+            break
+    assert trees[0] == ("?", "on(cube, goal)",
+                        ("->", "holding(cube)", "near(goal)", "[Place(cube, goal)]"))
+    assert trees[1] == ("?", "on(cube, goal)", ("->", (
+        "?", "holding(cube)", ("->", "near(cube)", "hand_empty", "[Pick(cube)]")),
+        "near(goal)", "[Place(cube, goal)]"))
+    assert trees[-1] == FIGURE_7 and len(trees) == 4
+    assert [a.ipc() for a in world.executed] == [
+        "(moveto cube tau_cube)", "(pick cube)", "(moveto goal tau_goal)", "(place cube goal)"]
+
+
+def test_example_1_structure_holds_in_the_obstacle_domain_without_the_obstacle() -> None:
+    loop, _ = loop_for("pick_place_obstacle.bt")
+    assert loop.run(100).reached
+    assert shape(loop.tree.root) == FIGURE_7
+
+
+def test_example_2_moves_the_new_subtree_before_holding_the_cube() -> None:
+    loop, world = loop_for("pick_place_obstacle.bt")
+    done: list[int] = []
+
+    def hook(tick: int) -> None:
+        if not done and Atom("holding", ("cube",)) in world.facts():
+            done.append(tick)
+            world.clear_fact(Atom("free", ("tau_goal",)))
+            world.set_fact(Atom("blocks", ("sphere", "tau_goal")))
+
+    seen = []
+    result = loop.run(200, before_tick=hook, on_tick=lambda r: seen.extend(r.expansions))
+    assert result.reached and done
+    clear = next(e for e in seen if e.condition == "free(tau_goal)")
+    assert clear.achievers == ["ClearPath(sphere, tau_goal)"]
+    assert clear.conflicts_resolved >= 1 and clear.moves == 2
+    root = shape(loop.tree.root)
+    assert root[0:2] == ("?", "on(cube, goal)")
+    place = root[2]
+    # Figure 8(b): the path-clearing subtree runs first in the Place sequence, before
+    # the holding(cube) subtree; MoveTo(goal) no longer carries the moved condition.
+    assert place[0] == "->" and place[2] == HOLD_CUBE
+    assert place[1][0:2] == ("?", "free(tau_goal)")
+    assert place[1][2][-1] == "[ClearPath(sphere, tau_goal)]"
+    assert place[3] == ("?", "near(goal)", ("->", "[MoveTo(goal, tau_goal)]"))
+    assert place[4] == "[Place(cube, goal)]"
+    executed = [str(a) for a in world.executed]
+    # drop the cube, clear the path, then complete the task
+    assert executed[:2] == ["MoveTo(cube, tau_cube)", "Pick(cube)"]
+    drop, clear_at = executed.index("Drop(cube)"), executed.index("ClearPath(sphere, tau_goal)")
+    assert drop < clear_at < executed.index("Place(cube, goal)")
+    assert executed[-2:] == ["MoveTo(goal, tau_goal)", "Place(cube, goal)"]
+
+
+def test_example_2_right_after_the_expansion_matches_figure_8a_then_8b() -> None:
+    loop, world = loop_for("pick_place_obstacle.bt")
+    assert loop.run(100).reached  # Example 1's final tree, cube on the goal
+    world.clear_fact(Atom("on", ("cube", "goal")))
+    world.set_fact(Atom("holding", ("cube",)))
+    world.clear_fact(Atom("hand_empty", ()))
+    world.clear_fact(Atom("near", ("goal",)))
+    world.set_fact(Atom("near", ("cube",)))
+    world.clear_fact(Atom("free", ("tau_goal",)))
+    world.set_fact(Atom("blocks", ("sphere", "tau_goal")))
+    report = loop.tick()
+    assert [e.condition for e in report.expansions] == ["free(tau_goal)"]
+    place = shape(loop.tree.root)[2]
+    assert place[1][1] == "free(tau_goal)" and place[2] == HOLD_CUBE
