@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import shutil
 import subprocess
+from pathlib import Path
 
 import pytest
 from bt_stubs import example1_world, figure7_tree
@@ -23,6 +24,23 @@ def ticked_figure7() -> tuple[BehaviorTree, dict]:  # type: ignore[type-arg]
     tree.tick(example1_world())
     assert recorder.last is not None
     return tree, recorder.last.statuses()
+
+
+DOCS = Path(__file__).resolve().parents[2] / "docs" / "trees"
+
+
+def slipped_figure7() -> tuple[BehaviorTree, dict, tuple[str, ...]]:  # type: ignore[type-arg]
+    """Figure 7 on the tick after the cube slipped mid-MoveTo (coloured in the docs)."""
+    tree, world = figure7_tree(), example1_world()
+    recorder = TickRecorder()
+    recorder.attach(tree)
+    for _ in range(5):
+        tree.tick(world)
+    world.facts -= {("holding", ("cube",))}
+    world.facts |= {("hand_empty", ())}
+    tree.tick(world)
+    assert recorder.last is not None and recorder.last.halted
+    return tree, recorder.last.statuses(), recorder.last.halted
 
 
 def test_figure7_dot_matches_the_golden_file(golden) -> None:  # type: ignore[no-untyped-def]
@@ -47,6 +65,14 @@ def test_dot_colours_the_nodes_a_tick_reached_by_status() -> None:
     lines = {line.split(" ")[2]: line for line in text.splitlines() if " [label=" in line}
     assert COLOURS[FAILURE] in lines["n1"] and COLOURS[RUNNING] in lines["n10"]
     assert COLOURS[SUCCESS] in lines["n9"] and "fillcolor" not in lines["n12"]
+
+
+def test_dot_outlines_the_action_a_tick_halted() -> None:
+    tree, statuses, halted = slipped_figure7()
+    text = dump_dot(tree, statuses, halted)
+    moveto_goal = next(ln for ln in text.splitlines() if "MoveTo(goal" in ln)
+    assert 'style="dashed,bold"' in moveto_goal and "halted" in moveto_goal
+    assert text.count("dashed") == 1
 
 
 @pytest.mark.parametrize("coloured", [False, True])
@@ -82,3 +108,23 @@ def test_dump_knows_every_format_and_colours_by_last_status() -> None:
     assert "fillcolor" in dump(tree, "dot", with_status=True)
     assert "RUNNING" in dump(tree, "ascii", with_status=True)
     assert "fillcolor" not in dump(tree, "dot")
+
+
+@pytest.mark.parametrize("picture", ["figure7.png", "figure7-slip.png"])
+def test_docs_pictures_render_from_the_hand_built_figure7(
+        picture: str, request: pytest.FixtureRequest, tmp_path: Path) -> None:
+    """Renders the pictures of docs/trees.md; `--update-golden` refreshes them."""
+    if shutil.which("dot") is None:
+        pytest.skip("graphviz 'dot' is not installed (Debian: apt-get install graphviz)")
+    if picture == "figure7.png":
+        text = dump_dot(figure7_tree())
+    else:
+        text = dump_dot(*slipped_figure7())  # coloured, MoveTo(goal) outlined as halted
+    out = tmp_path / picture
+    subprocess.run(["dot", "-Tpng", "-Gdpi=110", "-o", str(out)], input=text.encode(),
+                   check=True)
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    if request.config.getoption("--update-golden"):
+        DOCS.mkdir(parents=True, exist_ok=True)
+        (DOCS / picture).write_bytes(out.read_bytes())
+    assert (DOCS / picture).exists(), "run pytest --update-golden to render the docs picture"

@@ -8,7 +8,7 @@ carry a star (`?*`, `→*`) as in the BT literature. Node names are the stable i
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 
 from btplan.bt.composites import Fallback, Sequence
 from btplan.bt.decorators import Retry, Timeout
@@ -44,7 +44,7 @@ def node_label(node: Node) -> str:
     return node.kind
 
 
-def _attributes(node: Node, status: Status | None) -> str:
+def _attributes(node: Node, status: Status | None, halted: bool) -> str:
     attrs = [f"label={_quote(node_label(node))}"]
     styles: list[str] = []
     if isinstance(node, Action):
@@ -61,6 +61,9 @@ def _attributes(node: Node, status: Status | None) -> str:
         styles.append("filled")
         attrs.append(f'fillcolor="{COLOURS[status]}"')
         tips.append(status.value)
+    if halted:
+        styles += ["dashed", "bold"]
+        tips.append("halted")
     if styles:
         attrs.append(f'style="{",".join(styles)}"')
     if tips:
@@ -68,8 +71,13 @@ def _attributes(node: Node, status: Status | None) -> str:
     return ", ".join(attrs)
 
 
-def dump_dot(tree: BehaviorTree, statuses: Mapping[str, Status] | None = None) -> str:
-    """The tree as a DOT digraph; `statuses` (by node id) fills nodes with their colour."""
+def dump_dot(tree: BehaviorTree, statuses: Mapping[str, Status] | None = None,
+             halted: Collection[str] = ()) -> str:
+    """The tree as a DOT digraph.
+
+    `statuses` (by node id, e.g. `TickTrace.statuses()`) fills nodes with their colour;
+    `halted` ids (e.g. `TickTrace.halted`) get a bold dashed outline.
+    """
     lines = [f"digraph {_quote(tree.name)} {{",
              '  graph [ordering=out, nodesep=0.25, ranksep=0.4];',
              '  node [fontname="Helvetica", fontsize=12, margin="0.08,0.04"];',
@@ -78,7 +86,8 @@ def dump_dot(tree: BehaviorTree, statuses: Mapping[str, Status] | None = None) -
     ids = {id(n): f"n{i}" for i, n in enumerate(nodes)}
     for node in nodes:
         nid = ids[id(node)]
-        lines.append(f"  {nid} [{_attributes(node, (statuses or {}).get(nid))}];")
+        status = (statuses or {}).get(nid)
+        lines.append(f"  {nid} [{_attributes(node, status, nid in halted)}];")
     for node in nodes:
         lines.extend(f"  {ids[id(node)]} -> {ids[id(child)]};" for child in node.children)
     lines.append("}")
