@@ -1,3 +1,99 @@
-"""The `btplan plan` command."""
+"""The `btplan plan` command: backchain a tree offline in the symbolic world and print it."""
 
 from __future__ import annotations
+
+import sys
+from enum import Enum
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from btplan.api import PlanResult, load, plan
+from btplan.blend import Expansion
+from btplan.bt import BehaviorTree
+from btplan.bt.formats import dump
+from btplan.cli.app import app, guarded, stderr
+from btplan.errors import InputError, Span
+from btplan.io import STDIO, write_atomic
+
+
+class Format(str, Enum):
+    xml = "xml"
+    dot = "dot"
+    json = "json"
+    ascii = "ascii"
+
+
+@app.command(name="plan")
+@guarded
+def plan_command(
+    domain: Annotated[str, typer.Argument(
+        metavar="DOMAIN", help="Domain (.bt or .pddl), or domain and problem in one .bt file.")],
+    problem: Annotated[str | None, typer.Argument(
+        metavar="[PROBLEM]", help="Problem file, when it is not in DOMAIN.", show_default=False)
+    ] = None,
+    fmt: Annotated[Format | None, typer.Option(
+        "--format", "-f", help="Tree format: ascii on a terminal, json when piped.",
+        show_default=False)] = None,
+    out: Annotated[str, typer.Option("-o", "--out", help="Write the tree here ('-': stdout).")
+                   ] = STDIO,
+    plan_out: Annotated[str | None, typer.Option(
+        "--plan-out", help="Write the executed actions in IPC plan format.", show_default=False)
+    ] = None,
+    trace_expansions: Annotated[str | None, typer.Option(
+        "--trace-expansions", metavar="DIR",
+        help="Write the tree after every expansion (DOT and JSON) into DIR.", show_default=False)
+    ] = None,
+    seed: Annotated[int, typer.Option(help="Seed of the symbolic world.")] = 0,
+    max_expansions: Annotated[int, typer.Option(help="Give up after this many expansions.")
+                              ] = 1000,
+    max_ticks: Annotated[int, typer.Option(help="Give up after this many ticks.")] = 100_000,
+    timeout: Annotated[float | None, typer.Option(
+        help="Give up after this many seconds.", show_default=False)] = None,
+) -> None:
+    """Build a reactive BT for the problem by planning and acting in the symbolic world."""
+    for name, value in (("--max-expansions", max_expansions), ("--max-ticks", max_ticks)):
+        if value < 1:
+            raise InputError(f"{name} must be at least 1, got {value}")
+    if timeout is not None and timeout <= 0:
+        raise InputError(f"--timeout must be positive, got {timeout:g}")
+    folder = _trace_folder(trace_expansions)
+    task = load(*([domain] if problem is None else [domain, problem]))
+    chosen = fmt.value if fmt is not None else ("ascii" if sys.stdout.isatty() else "json")
+    written: list[int] = []
+
+    def trace(tree: BehaviorTree, expansion: Expansion) -> None:
+        if folder is None:
+            return
+        written.append(expansion.tick)
+        stem = folder / f"expansion_{len(written):03d}"
+        write_atomic(f"{stem}.dot", dump(tree, "dot"))
+        write_atomic(f"{stem}.json", dump(tree, "json"))
+
+    result = plan(task, seed=seed, max_expansions=max_expansions, max_ticks=max_ticks,
+                  timeout=timeout, on_expansion=trace)
+    text = dump(result.tree, chosen)
+    write_atomic(out, text if text.endswith("\n") else text + "\n")
+    if plan_out is not None:
+        write_atomic(plan_out, "".join(a.ipc() + "\n" for a in result.executed))
+    stderr.print(summary(result))
+
+
+def summary(result: PlanResult) -> str:
+    s = result.stats
+    return (
+        f"[green]planned[/]: {s.expansions} expansions, {s.conflicts_resolved} conflicts "
+        f"resolved ({s.moves} moves), tree of {s.tree_size} nodes, {s.actions_executed} actions "
+        f"executed, {s.seconds:.3f} s"
+    )
+
+
+def _trace_folder(path: str | None) -> Path | None:
+    if path is None:
+        return None
+    folder = Path(path)
+    if folder.exists() and not folder.is_dir():
+        raise InputError("--trace-expansions needs a folder, this is a file", Span(path, 1, 1))
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder

@@ -1,0 +1,73 @@
+"""`btplan plan`: formats, output files, the executed plan, exit codes, determinism."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from typer.testing import CliRunner
+
+from btplan.cli import app
+
+DOMAINS = Path(__file__).resolve().parents[2] / "domains"
+PICK = str(DOMAINS / "pick_place.bt")
+runner = CliRunner()
+
+
+def test_plan_prints_json_when_piped_and_the_summary_on_stderr() -> None:
+    result = runner.invoke(app, ["plan", PICK])
+    assert result.exit_code == 0, result.output
+    tree = json.loads(result.stdout)
+    assert tree["root"]["type"] == "Fallback"
+    assert "4 expansions" in result.stderr and "4 actions executed" in result.stderr
+
+
+def test_plan_writes_tree_and_ipc_plan_files(tmp_path: Path) -> None:
+    out, plan = tmp_path / "tree.xml", tmp_path / "sas_plan"
+    result = runner.invoke(app, ["plan", PICK, "-f", "xml", "-o", str(out), "--plan-out", str(plan)])
+    assert result.exit_code == 0, result.output
+    assert result.stdout == ""
+    assert 'BTCPP_format="4"' in out.read_text()
+    assert plan.read_text().splitlines() == [
+        "(moveto cube tau_cube)", "(pick cube)", "(moveto goal tau_goal)", "(place cube goal)"]
+
+
+def test_trace_expansions_writes_one_dot_and_json_per_expansion(tmp_path: Path) -> None:
+    folder = tmp_path / "steps"
+    result = runner.invoke(app, ["plan", PICK, "-f", "ascii", "--trace-expansions", str(folder)])
+    assert result.exit_code == 0, result.output
+    names = sorted(p.name for p in folder.iterdir())
+    assert names == [f"expansion_{i:03d}.{ext}" for i in range(1, 5) for ext in ("dot", "json")]
+    first = json.loads((folder / "expansion_001.json").read_text())
+    assert first["root"]["type"] == "Fallback"
+
+
+def test_same_input_and_seed_give_byte_identical_trees() -> None:
+    runs = [runner.invoke(app, ["plan", str(DOMAINS / "pick_place_obstacle.bt"), "-f", "dot"])
+            for _ in range(2)]
+    assert runs[0].exit_code == 0 and runs[0].stdout == runs[1].stdout
+
+
+def test_missing_file_is_bad_input_and_leaves_no_output(tmp_path: Path) -> None:
+    out = tmp_path / "tree.json"
+    result = runner.invoke(app, ["plan", str(tmp_path / "nope.bt"), "-o", str(out)])
+    assert result.exit_code == 2
+    assert "no such file" in result.stderr and not out.exists()
+    assert "Traceback" not in result.output
+
+
+def test_no_achiever_is_a_planning_failure_with_a_reason(tmp_path: Path) -> None:
+    source = (DOMAINS / "pick_place.bt").read_text().replace(
+        "post: on(o, l), hand_empty, not holding(o)", "post: hand_empty, not holding(o)")
+    path = tmp_path / "broken.bt"
+    path.write_text(source)
+    result = runner.invoke(app, ["plan", str(path)])
+    assert result.exit_code == 1
+    assert "on(cube, goal)" in result.stderr
+
+
+def test_budgets_are_enforced_and_reported() -> None:
+    result = runner.invoke(app, ["plan", PICK, "--max-expansions", "2"])
+    assert result.exit_code == 1 and "expansion budget" in result.stderr
+    result = runner.invoke(app, ["plan", PICK, "--max-ticks", "0"])
+    assert result.exit_code == 2
