@@ -1,9 +1,11 @@
 """Per-tick traces: which nodes a tick reached, their statuses, which actions started or halted.
 
-Zero cost when off: a tree without a recorder ticks its plain nodes. Attaching a
-`TickRecorder` switches each node's class to a traced subclass with the same slots
-(a `__class__` swap, undone by `detach`), whose tick notes entry and exit on the
-channel passed down as the world. The tick engine itself carries no hooks, so
+Zero cost when off: a tree without a recorder ticks its plain nodes. During a
+recorded tick each node's class is switched to a traced subclass with the same slots
+(a `__class__` swap), whose tick notes entry and exit on the channel passed down as
+the world; after the tick every node gets its plain class back, so between ticks
+(when the planner edits the tree, or code tests `type(node) is Sequence`) a recorded
+tree looks exactly like any other. The tick engine itself carries no hooks, so
 tracing never slows down the acting loop that does not ask for it.
 
 Node ids (`n0`, `n1`, ...) are positions in a depth-first, left-to-right walk, so the
@@ -138,6 +140,14 @@ def _traced_class(cls: type[Node]) -> type[Node]:
     return twin
 
 
+def _restore(nodes: list[Node]) -> None:
+    """Give every node its plain class back."""
+    for node in nodes:
+        plain = _ORIGINAL.get(type(node))
+        if plain is not None:
+            node.__class__ = plain
+
+
 class TickRecorder:
     """Records every tick of the trees it is attached to.
 
@@ -153,10 +163,9 @@ class TickRecorder:
         tree.recorder = self
 
     def detach(self, tree: BehaviorTree) -> None:
-        """Stop recording and give every node its plain class back."""
+        """Stop recording this tree."""
         tree.recorder = None
-        for node in tree.nodes():
-            node.__class__ = _ORIGINAL.get(type(node), type(node))
+        _restore(tree.nodes())
 
     @property
     def last(self) -> TickTrace | None:
@@ -170,7 +179,10 @@ class TickRecorder:
             if cls not in _ORIGINAL:
                 node.__class__ = _traced_class(cls)
         channel = _Channel(world, {id(n): f"n{i}" for i, n in enumerate(nodes)})
-        status = tree.root.tick(channel)
+        try:
+            status = tree.root.tick(channel)
+        finally:
+            _restore(nodes)
         trace = TickTrace(
             tick=tree.ticks, status=status,
             nodes=tuple(NodeTick(i, n.kind, n.name, s) for i, n, s in channel.entries),

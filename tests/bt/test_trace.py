@@ -57,7 +57,7 @@ def test_recording_does_not_change_what_the_tree_does() -> None:
     assert plain_world.log == traced_world.log
 
 
-def test_detach_restores_the_plain_classes_and_nodes_added_later_are_traced() -> None:
+def test_plain_classes_between_ticks_and_nodes_added_later_are_traced() -> None:
     seq = Sequence([Condition("a")])
     tree = BehaviorTree(seq)
     recorder = TickRecorder()
@@ -67,8 +67,8 @@ def test_detach_restores_the_plain_classes_and_nodes_added_later_are_traced() ->
     seq.append(Action("B"))  # the planner grows the tree while acting
     tree.tick(world)
     assert [n.id for n in recorder.traces[-1].nodes] == ["n0", "n1", "n2"]
+    assert type(seq) is PlainSequence, "between ticks a recorded tree has its plain classes"
     recorder.detach(tree)
-    assert type(seq) is PlainSequence
     assert tree.tick(world) is RUNNING and len(recorder.traces) == 2
 
 
