@@ -1,0 +1,105 @@
+"""Files that are not domains at all: each ends in our own error with a place, quickly."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from btplan.errors import InputError
+from btplan.lang import load
+from btplan.lang.pddl_reader import read_pddl
+
+PICK_PLACE = Path(__file__).resolve().parents[2] / "domains" / "pick_place.bt"
+
+
+def load_error(*paths: Path | str) -> InputError:
+    with pytest.raises(InputError) as caught:
+        load([str(p) for p in paths])
+    assert caught.value.span is not None
+    return caught.value
+
+
+def test_empty_file(tmp_path: Path) -> None:
+    empty = tmp_path / "empty.bt"
+    empty.write_text("")
+    error = load_error(empty)
+    assert error.message == "this input holds no domain and no problem"
+    assert str(error.span) == f"{empty}:1:1"
+
+
+def test_comments_only_is_empty_too(tmp_path: Path) -> None:
+    quiet = tmp_path / "quiet.bt"
+    quiet.write_text("# nothing here\n\n")
+    assert load_error(quiet).message == "this input holds no domain and no problem"
+
+
+def test_binary_file(tmp_path: Path) -> None:
+    binary = tmp_path / "image.bt"
+    binary.write_bytes(bytes(range(256)) * 4)
+    assert load_error(binary).message == "this is a binary file, not text"
+
+
+def test_directory(tmp_path: Path) -> None:
+    assert load_error(tmp_path).message == "is a directory, not a file"
+
+
+def test_missing_file(tmp_path: Path) -> None:
+    error = load_error(tmp_path / "absent.bt")
+    assert error.message == "no such file"
+    assert error.span is not None and error.span.path.endswith("absent.bt")
+
+
+def test_non_utf8_bytes_are_located(tmp_path: Path) -> None:
+    latin = tmp_path / "latin.bt"
+    latin.write_bytes(PICK_PLACE.read_bytes().replace(b"cube : object", b"cub\xe9 : object"))
+    error = load_error(latin)
+    assert error.message == "the file is not valid UTF-8 text"
+    assert error.span is not None and (error.span.line, error.span.column) == (49, 12)
+    assert error.hint == "byte 0xe9 cannot be decoded"
+
+
+def test_five_megabytes_of_comments_and_a_domain(tmp_path: Path) -> None:
+    big = tmp_path / "big.bt"
+    padding = ("# " + "x" * 78 + "\n") * (5 * 1024 * 1024 // 81)
+    big.write_text(padding + PICK_PLACE.read_text())
+    assert big.stat().st_size > 5 * 1024 * 1024
+    task = load([str(big)])
+    assert task.problem.name == "cube_on_goal"
+
+
+def test_five_megabytes_of_garbage(tmp_path: Path) -> None:
+    junk = tmp_path / "junk.bt"
+    junk.write_text("}{" * (5 * 1024 * 1024 // 2))
+    error = load_error(junk)
+    assert error.message.startswith("unexpected '}'")
+    assert error.span is not None and (error.span.line, error.span.column) == (1, 1)
+
+
+def test_deeply_nested_parentheses_in_bt(tmp_path: Path) -> None:
+    deep = tmp_path / "deep.bt"
+    deep.write_text("domain d { predicates { p(" + "(" * 20000 + ")" * 20000 + ") } }")
+    error = load_error(deep)
+    assert error.message == "unexpected '('; expected ')' or a name"
+    assert error.span is not None and error.span.column == 27
+
+
+def test_deeply_nested_conjunctions_in_pddl() -> None:
+    """A legal but absurd depth: read without recursion, into one flat precondition."""
+    depth = 20000
+    text = (
+        "(define (domain d) (:predicates (p)) (:action a :parameters () :precondition "
+        + "(and " * depth
+        + "(p)"
+        + ")" * depth
+        + " :effect (not (p))))"
+    )
+    (domain,) = read_pddl(text, "deep.pddl")
+    assert len(domain.actions[0].pre) == 1  # type: ignore[union-attr]
+
+
+def test_deeply_nested_bare_parentheses_in_pddl(tmp_path: Path) -> None:
+    deep = tmp_path / "deep.pddl"
+    deep.write_text("(" * 20000 + ")" * 20000)
+    error = load_error(deep)
+    assert error.message == "expected 'define'"
