@@ -1,0 +1,196 @@
+"""One acting run: a world, its external agents, the blended loop, and a record per tick.
+
+This is what `btplan run` and `btplan.run` do: Algorithm 1 online, with agents
+changing the world between ticks. It only observes the loop (a tick recorder on the
+tree, the world's action logs, the facts before and after), so a run with a trace
+behaves exactly like one without.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from btplan.blend import BlendedLoop, Expansion, TickReport
+from btplan.bt import BehaviorTree, Node, Status, World
+from btplan.bt.trace import TickRecorder
+from btplan.errors import PlanningError
+from btplan.model import Atom, GroundAction, Task
+from btplan.trace import ExpansionNote, RunSummary, TickRecord, summarize
+from btplan.worlds.agents import Agent, act_all, agents_from_specs
+from btplan.worlds.disturb import DisturbSpec, check_specs, parse_spec
+from btplan.worlds.symbolic import SymbolicWorld
+
+TickView = Callable[[Node, Mapping[int, Status], TickRecord], None]
+"""Called after every tick with the tree, id(node) -> status for the nodes this tick
+reached, and the tick's record: the live view is one."""
+
+_LOGS = ("started", "halted", "executed", "failed")
+
+
+@dataclass(slots=True)
+class RunOutcome:
+    """How a run ended, and everything that happened on the way (one record per tick)."""
+
+    reached: bool
+    reason: str
+    tree: BehaviorTree
+    world: Any
+    records: list[TickRecord] = field(default_factory=list)
+
+    @property
+    def ticks(self) -> int:
+        return len(self.records)
+
+    @property
+    def executed(self) -> list[GroundAction]:
+        """The grounded actions the robot completed, in order (what `--plan-out` writes)."""
+        return list(self.world.executed)
+
+    def summary(self) -> RunSummary:
+        return summarize(self.records)
+
+    def plan_text(self) -> str:
+        """The executed actions in the IPC plan format, one per line."""
+        return "".join(a.ipc() + "\n" for a in self.executed)
+
+
+class _Recorder(TickRecorder):
+    """A tick recorder that gives the nodes their plain classes back after every tick.
+
+    Recording swaps node classes for traced twins; planner code that tests a node's
+    exact class would then miss them, so the tree between ticks (when it is
+    expanded) must look exactly as it does without a recorder.
+    """
+
+    def tick(self, tree: BehaviorTree, world: World) -> Status:
+        status = super().tick(tree, world)
+        self.detach(tree)
+        self.attach(tree)
+        return status
+
+
+class _Observer:
+    """Turns what the loop and the world did around one tick into a TickRecord."""
+
+    def __init__(self, world: Any, agents: Sequence[Agent], tree: BehaviorTree,
+                 view: TickView | None, rate: float | None) -> None:
+        self.world, self.agents, self.tree, self.view = world, list(agents), tree, view
+        self.period = 1.0 / rate if rate else 0.0
+        self.recorder = _Recorder()
+        self.recorder.attach(tree)
+        self.records: list[TickRecord] = []
+        self._facts: frozenset[Atom] = world.facts()
+        self._marks: dict[str, int] = {}
+        self._ids: dict[str, Node] = {}
+        self._disturbances: list[Any] = []
+        self._next = time.monotonic()
+
+    def before(self, tick: int) -> None:
+        """Pace the run, let the agents act, and remember where the logs stood."""
+        if self.period:
+            delay = self._next - time.monotonic()
+            if delay > 0:
+                time.sleep(delay)
+            self._next = max(self._next, time.monotonic()) + self.period
+        self._marks = {name: len(getattr(self.world, name)) for name in _LOGS}
+        self._disturbances = act_all(self.agents, self.world, tick)
+        self._ids = {f"n{i}": node for i, node in enumerate(self.tree.nodes())}
+
+    def after(self, report: TickReport) -> None:
+        traces = list(self.recorder.traces)
+        self.recorder.traces.clear()
+        nodes = traces[0].nodes if traces else ()
+        reached = {id(self._ids[n.id]): n.status for n in nodes if n.id in self._ids}
+        facts = self.world.facts()
+        record = TickRecord(
+            tick=report.tick,
+            status=report.status.value,
+            nodes=nodes,
+            started=self._since("started"),
+            halted=self._since("halted"),
+            finished=self._since("executed"),
+            failed=self._since("failed"),
+            disturbances=tuple(self._disturbances),
+            expansions=tuple(note(e) for e in report.expansions),
+            added=tuple(str(a) for a in sorted(facts - self._facts)),
+            removed=tuple(str(a) for a in sorted(self._facts - facts)),
+        )
+        self._facts = facts
+        self.records.append(record)
+        if self.view is not None:
+            self.view(self.tree.root, reached, record)
+
+    def _since(self, log: str) -> tuple[str, ...]:
+        return tuple(str(a) for a in getattr(self.world, log)[self._marks.get(log, 0):])
+
+
+def note(expansion: Expansion) -> ExpansionNote:
+    """An expansion as the trace shows it: the condition, its achievers, the moves made."""
+    return ExpansionNote(
+        condition=str(expansion.condition),
+        achievers=tuple(str(a) for a in expansion.achievers),
+        conflicts_resolved=int(expansion.conflicts_resolved),
+        moves=int(expansion.moves),
+    )
+
+
+def run_task(
+    task: Task,
+    *,
+    world: Any | None = None,
+    agents: Sequence[Agent] = (),
+    seed: int = 0,
+    max_ticks: int = 1000,
+    view: TickView | None = None,
+    rate: float | None = None,
+    failure_probability: Mapping[str, float] | None = None,
+) -> RunOutcome:
+    """Plan and act at once (Algorithm 1) in `world`, with `agents` acting before each tick.
+
+    Without a world, the symbolic one is used, seeded with `seed`. The loop never
+    rebuilds the tree: it only grows on FAILURE, as the paper's Problem 1 asks.
+    """
+    if world is None:
+        world = SymbolicWorld(task, seed=seed, failure_probability=failure_probability)
+    loop = BlendedLoop(task, world)
+    observer = _Observer(world, agents, loop.tree, view, rate)
+    try:
+        outcome = loop.run(max_ticks, before_tick=observer.before, on_tick=observer.after)
+        reached, reason = outcome.reached, outcome.reason
+    except PlanningError as error:
+        # The tree cannot grow any further (no achiever, going round in circles): the run
+        # ends as not reached, and its records still tell how it got there.
+        reached, reason = False, error.reason
+    finally:
+        observer.recorder.detach(loop.tree)
+    return RunOutcome(reached=reached, reason=reason, tree=loop.tree, world=world,
+                      records=observer.records)
+
+
+def run(
+    task: Task,
+    *,
+    disturb: Sequence[str | DisturbSpec] = (),
+    agents: Sequence[Agent] = (),
+    world: Any | None = None,
+    seed: int = 0,
+    max_ticks: int = 1000,
+    view: TickView | None = None,
+    rate: float | None = None,
+    failure_probability: Mapping[str, float] | None = None,
+) -> RunOutcome:
+    """Run `task` in a world with disturbances: the library form of `btplan run`.
+
+    `disturb` holds specs such as `"undo@5"` or `"set:blocked(tau_goal)@p=0.05"`
+    (syntax in docs/cli.md), checked against the task first; `agents` are any other
+    agents (a simulator's scripted events). Returns the outcome with one record per
+    tick; raises InputError for a bad spec.
+    """
+    specs = [parse_spec(s) if isinstance(s, str) else s for s in disturb]
+    check_specs(specs, task)
+    everyone = [*agents_from_specs(specs, seed), *agents]
+    return run_task(task, world=world, agents=everyone, seed=seed, max_ticks=max_ticks,
+                    view=view, rate=rate, failure_probability=failure_probability)

@@ -1,0 +1,112 @@
+"""`btplan run`: exit codes, the summary, the trace file, the plan file, located spec errors."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from typer.testing import CliRunner
+
+from btplan.cli import app
+
+DOMAINS = Path(__file__).resolve().parents[2] / "domains"
+PICK_PLACE = str(DOMAINS / "pick_place.bt")
+runner = CliRunner()
+
+PLAN = "(moveto cube tau_cube)\n(pick cube)\n(moveto goal tau_goal)\n(place cube goal)\n"
+
+
+def test_a_calm_run_reaches_the_goal_and_writes_the_executed_plan(tmp_path: Path) -> None:
+    plan = tmp_path / "sas_plan"
+    result = runner.invoke(app, ["run", PICK_PLACE, "--sim", "symbolic", "--plan-out", str(plan)])
+    assert result.exit_code == 0, result.output
+    assert plan.read_text() == PLAN
+    assert result.stdout == ""
+    assert "goal reached" in result.stderr
+    assert "expansions          4 (on(cube, goal) @1" in result.stderr
+
+
+def test_the_plan_can_go_to_standard_output() -> None:
+    result = runner.invoke(app, ["run", PICK_PLACE, "--quiet", "--plan-out", "-"])
+    assert result.exit_code == 0
+    assert result.stdout == PLAN
+
+
+def test_the_trace_has_one_json_line_per_tick_with_the_disturbance(tmp_path: Path) -> None:
+    trace = tmp_path / "run.jsonl"
+    result = runner.invoke(app, ["run", PICK_PLACE, "--disturb", "undo:Pick@8",
+                                 "--trace", str(trace)])
+    assert result.exit_code == 0, result.output
+    lines = [json.loads(line) for line in trace.read_text().splitlines()]
+    assert [line["tick"] for line in lines] == list(range(1, len(lines) + 1))
+    assert lines[-1]["status"] == "SUCCESS"
+    assert lines[7]["disturbances"] == [
+        {"agent": "undo:Pick@8", "kind": "undo",
+         "description": "undid Pick(cube): +hand_empty() -holding(cube)"}]
+    assert lines[0]["expansions"][0]["condition"] == "on(cube, goal)"
+    assert {"id", "kind", "name", "status"} <= set(lines[3]["nodes"][0])
+    assert "tick 8: undo:Pick@8: undid Pick(cube)" in result.stderr
+
+
+def test_a_scenario_file_adds_agents(tmp_path: Path) -> None:
+    scenario = tmp_path / "help.dist"
+    scenario.write_text("# someone hands the cube over\nhelp:Pick(cube)@1\n")
+    result = runner.invoke(app, ["run", PICK_PLACE, "--scenario", str(scenario), "--quiet",
+                                 "--plan-out", "-"])
+    assert result.exit_code == 0, result.output
+    assert result.stdout == "(moveto goal tau_goal)\n(place cube goal)\n"
+
+
+def test_not_reaching_the_goal_in_time_exits_1_and_still_writes_the_trace(tmp_path: Path) -> None:
+    trace = tmp_path / "short.jsonl"
+    result = runner.invoke(app, ["run", PICK_PLACE, "--max-ticks", "5", "--trace", str(trace)])
+    assert result.exit_code == 1
+    assert "not reached" in result.stderr
+    assert "within 5 ticks" in result.stderr
+    assert len(trace.read_text().splitlines()) == 5
+
+
+def test_a_bad_spec_is_a_located_error_and_nothing_is_written(tmp_path: Path) -> None:
+    trace = tmp_path / "never.jsonl"
+    result = runner.invoke(app, ["run", PICK_PLACE, "--disturb", "undo@5x",
+                                 "--trace", str(trace)])
+    assert result.exit_code == 2
+    assert "--disturb:1:7: unexpected 'x' after the timing" in result.stderr
+    assert "  undo@5x\n        ^" in result.stderr
+    assert not trace.exists()
+    assert "Traceback" not in result.output
+
+
+def test_a_spec_naming_an_unknown_action_gets_a_hint() -> None:
+    result = runner.invoke(app, ["run", PICK_PLACE, "--disturb", "fail:Pik@2"])
+    assert result.exit_code == 2
+    assert "unknown action 'Pik' (did you mean 'Pick'?)" in result.stderr
+
+
+def test_a_bad_scenario_line_points_at_the_file_line(tmp_path: Path) -> None:
+    scenario = tmp_path / "bad.dist"
+    scenario.write_text("undo@3\n  clear:holding(cube)@ten\n")
+    result = runner.invoke(app, ["run", PICK_PLACE, "--scenario", str(scenario)])
+    assert result.exit_code == 2
+    assert f"{scenario}:2:23: expected a tick number" in result.stderr
+
+
+def test_failure_probabilities_are_checked() -> None:
+    bad = runner.invoke(app, ["run", PICK_PLACE, "--fail-prob", "Pick=2"])
+    assert bad.exit_code == 2 and "between 0 and 1" in bad.stderr
+    unknown = runner.invoke(app, ["run", PICK_PLACE, "--fail-prob", "Pock=0.5"])
+    assert unknown.exit_code == 2 and "unknown action 'Pock'" in unknown.stderr
+
+
+def test_a_sure_failure_of_the_only_achiever_ends_with_a_reason() -> None:
+    result = runner.invoke(app, ["run", PICK_PLACE, "--fail-prob", "Pick=1", "--quiet"])
+    assert result.exit_code == 1
+    failed_row = next(line for line in result.stderr.splitlines() if line.startswith(" failed"))
+    assert "Pick(cube)" in failed_row
+    assert "MoveTo(cube, tau_cube)" in result.stderr
+
+
+def test_gui_needs_the_pybullet_world() -> None:
+    result = runner.invoke(app, ["run", PICK_PLACE, "--gui"])
+    assert result.exit_code == 2
+    assert "--gui and --record need --sim pybullet" in result.stderr
