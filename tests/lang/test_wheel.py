@@ -1,0 +1,83 @@
+"""A non-editable install finds the grammars: they ship inside the wheel as package data.
+
+Builds the wheel from a copy of the sources (so the working tree stays clean), installs
+it with --no-deps into a fresh venv that borrows the system's dependencies, and runs a
+check from an unrelated folder.
+"""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def run(*args: str | Path, cwd: Path) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [str(a) for a in args], cwd=cwd, capture_output=True, text=True, check=False
+    )
+
+
+@pytest.mark.slow
+def test_installed_wheel_reads_both_grammars(tmp_path: Path) -> None:
+    source = tmp_path / "src"
+    source.mkdir()
+    for name in ("pyproject.toml", "README.md"):
+        shutil.copy(ROOT / name, source / name)
+    for folder in ("btplan", "grammar"):
+        shutil.copytree(
+            ROOT / folder, source / folder, ignore=shutil.ignore_patterns("__pycache__")
+        )
+    wheels = tmp_path / "wheels"
+    built = run(
+        sys.executable,
+        "-m",
+        "pip",
+        "wheel",
+        "--no-deps",
+        "--no-build-isolation",
+        "-q",
+        "-w",
+        wheels,
+        source,
+        cwd=tmp_path,
+    )
+    assert built.returncode == 0, built.stderr
+    (wheel,) = wheels.glob("btplan-*.whl")
+    names = zipfile.ZipFile(wheel).namelist()
+    assert "btplan/grammar/btplan.lark" in names and "btplan/grammar/pddl.lark" in names
+
+    venv = tmp_path / "venv"
+    made = run(sys.executable, "-m", "venv", "--system-site-packages", venv, cwd=tmp_path)
+    assert made.returncode == 0, made.stderr
+    python = venv / "bin" / "python"
+    installed = run(python, "-m", "pip", "install", "-q", "--no-deps", wheel, cwd=tmp_path)
+    assert installed.returncode == 0, installed.stderr
+
+    work = tmp_path / "elsewhere"
+    work.mkdir()
+    shutil.copy(ROOT / "domains" / "pick_place.bt", work / "pick_place.bt")
+    script = (
+        "import btplan, btplan.lang as lang\n"
+        "from btplan.lang.generators import generate\n"
+        "print(btplan.__file__)\n"
+        "print(lang.load(['pick_place.bt']).problem.name)\n"
+        "open('d.pddl', 'w').write(generate('gripper', balls=2)[0])\n"
+        "open('p.pddl', 'w').write(generate('gripper', balls=2)[1])\n"
+        "print(lang.load(['d.pddl', 'p.pddl']).problem.name)\n"
+    )
+    checked = run(python, "-c", script, cwd=work)
+    assert checked.returncode == 0, checked.stderr
+    where, bt_problem, pddl_problem = checked.stdout.split()
+    assert Path(where).is_relative_to(venv) and bt_problem == "cube_on_goal"
+    assert pddl_problem == "gripper_2_s0"
+
+    command = run(venv / "bin" / "btplan", "check", "pick_place.bt", "d.pddl", "p.pddl", cwd=work)
+    assert command.returncode == 0, command.stderr
+    assert "problem cube_on_goal for pick_place" in command.stdout
