@@ -10,10 +10,8 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 from collections.abc import Callable
 
-from bt_stubs import ScriptWorld
-
 from btplan.bt import FAILURE, RUNNING, SUCCESS, Status
-from btplan.bt.world import LeafKey
+from btplan.bt.world import LeafKey, World
 
 CONTROL = {"ReactiveSequence", "ReactiveFallback", "Sequence", "Fallback", "Parallel",
            "Inverter", "ForceSuccess", "ForceFailure", "RetryUntilSuccessful", "Timeout"}
@@ -54,7 +52,7 @@ def port_free_copy(xml: str) -> tuple[str, dict[str, LeafKey]]:
 class BtcppRun:
     """The exported tree inside BT.CPP, its leaves answering from a ScriptWorld."""
 
-    def __init__(self, xml: str, world: ScriptWorld) -> None:
+    def __init__(self, xml: str, world: World) -> None:
         import behaviortreepy as bt
 
         self.bt, self.world = bt, world
