@@ -1,1 +1,58 @@
-"""worlds/pybullet"""
+"""PyBullet backend: a mobile manipulator among cubes, MoveTo planned with OMPL.
+
+Importing this package is cheap: pybullet, ompl and pillow are loaded only when a world
+is opened (`open_world`), so the rest of btplan works without the simulation extra.
+"""
+
+from __future__ import annotations
+
+import importlib
+from pathlib import Path
+
+from btplan.errors import WorldError
+from btplan.model import Task
+from btplan.worlds.pybullet.world import PyBulletWorld
+
+SCENES = Path(__file__).resolve().parents[3] / "domains" / "scenes"
+"""Where the scenes of the shipped domains live, next to the domains."""
+
+
+def default_scene(task: Task) -> Path:
+    """The scene named after the domain, e.g. domains/scenes/youbot.toml for youbot."""
+    return SCENES / f"{task.domain.name}.toml"
+
+
+def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = False,
+               record: str | None = None, verbose: bool = False) -> PyBulletWorld:
+    """Build the PyBullet world of `task` from a scene file (by default the domain's own).
+
+    Raises WorldError when the simulation extra is missing or the scene does not fit
+    the problem, and InputError (located) when the scene file is malformed.
+    """
+    from btplan.worlds.pybullet.sim import quiet_stdout
+
+    try:
+        with quiet_stdout():
+            for module in ("pybullet", "ompl", "PIL"):
+                importlib.import_module(module)
+    except ImportError as error:
+        raise WorldError(f"the PyBullet backend needs the 'sim' extra ({error.name} is "
+                         "missing): pip install 'btplan[sim]'") from None
+    from btplan.worlds.pybullet.agents import scene_agents
+    from btplan.worlds.pybullet.record import Recorder
+    from btplan.worlds.pybullet.scene import load_scene
+    from btplan.worlds.pybullet.world import PyBulletWorld
+
+    path = Path(scene) if scene is not None else default_scene(task)
+    if scene is None and not path.exists():
+        raise WorldError(f"no scene for domain {task.domain.name!r}: pass one with --scenario")
+    loaded = load_scene(path)
+    world = PyBulletWorld(task, loaded, seed=seed, gui=gui, verbose=verbose)
+    world.agents = scene_agents(loaded.events, str(path))
+    if record is not None:
+        world.recorder = Recorder(record)
+        world.on_frame = world.recorder
+    return world
+
+
+__all__ = ["PyBulletWorld", "default_scene", "open_world"]

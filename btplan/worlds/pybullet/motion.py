@@ -1,0 +1,127 @@
+"""SE(2) motion planning for the mobile base with OMPL (RRTConnect + path simplification).
+
+OMPL is imported only when a plan is asked for, so that loading btplan costs nothing on
+a machine without the simulation extra. Collision checking is delegated to a callable
+(the PyBullet scene), which keeps this module free of any simulator detail.
+"""
+
+from __future__ import annotations
+
+import gc
+import importlib
+import itertools
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+Pose2 = tuple[float, float, float]
+"""x, y (metres) and yaw (radians) of the base in the plane."""
+
+
+@dataclass(frozen=True, slots=True)
+class PlanResult:
+    """A solved path with the time OMPL took, kept for the run's statistics."""
+
+    path: tuple[Pose2, ...]
+    seconds: float
+
+
+def _ompl(part: str) -> Any:
+    """An OMPL submodule, imported on first use (OMPL ships no type information)."""
+    return importlib.import_module(f"ompl.{part}")
+
+
+def set_log_level(verbose: bool) -> None:
+    """OMPL prints an Info line per solve; only show them when the user asked for it."""
+    ou = _ompl("util")
+    ou.setLogLevel(ou.LogLevel.LOG_INFO if verbose else ou.LogLevel.LOG_NONE)
+
+
+def release() -> None:
+    """Collect OMPL objects no longer referenced, before the interpreter exits."""
+    gc.collect()
+
+
+def seed_rng(seed: int) -> None:
+    """Seed OMPL's sampler; must happen before the first planner is created."""
+    _ompl("util").RNG.setSeed(seed)
+
+
+def plan_se2(
+    start: Pose2,
+    goal: Pose2,
+    valid: Callable[[float, float], bool],
+    bounds: tuple[float, float, float, float],
+    budget: float = 0.5,
+    step: float = 0.05,
+) -> PlanResult | None:
+    """Plan from `start` to `goal` with RRTConnect, simplify, interpolate every `step` metres.
+
+    `valid(x, y)` says whether the robot's footprint fits at (x, y); the footprint is a disc,
+    so the yaw does not change validity and the heading along the path is computed after.
+    Returns None when no path is found within `budget` seconds.
+    """
+    ob, og = _ompl("base"), _ompl("geometric")
+
+    space = ob.SE2StateSpace()
+    box = ob.RealVectorBounds(2)
+    box.setLow(0, bounds[0])
+    box.setHigh(0, bounds[1])
+    box.setLow(1, bounds[2])
+    box.setHigh(1, bounds[3])
+    space.setBounds(box)
+    setup = og.SimpleSetup(space)
+
+    def checker(state: Any) -> bool:
+        return valid(state.getX(), state.getY())
+
+    setup.setStateValidityChecker(checker)
+    info = setup.getSpaceInformation()
+    info.setStateValidityCheckingResolution(0.005)
+    s, g = space.allocState(), space.allocState()
+    for state, pose in ((s, start), (g, goal)):
+        state.setX(pose[0])
+        state.setY(pose[1])
+        state.setYaw(pose[2])
+    setup.setStartAndGoalStates(s, g)
+    setup.setPlanner(og.RRTConnect(info))
+    began = time.perf_counter()
+    try:
+        solved = bool(setup.solve(budget)) and setup.haveExactSolutionPath()
+        if not solved:
+            return None
+        setup.simplifySolution()
+        raw = setup.getSolutionPath()
+        points = [(raw.getState(i).getX(), raw.getState(i).getY()) for i in range(raw.getStateCount())]
+        return PlanResult(densify(points, start, goal, step), time.perf_counter() - began)
+    finally:
+        # Drop OMPL objects (and the Python checker they hold) now; `release` collects
+        # them, or nanobind reports leaked instances at interpreter exit.
+        setup.clear()
+        del setup, info, checker, s, g, space
+
+
+def densify(
+    points: list[tuple[float, float]], start: Pose2, goal: Pose2, step: float
+) -> tuple[Pose2, ...]:
+    """Waypoints every `step` metres along the polyline, facing the direction of travel.
+
+    The first pose keeps the start heading and the last one the goal heading, so the base
+    turns on the spot at both ends as a differential-drive robot would.
+    """
+    out: list[Pose2] = [start]
+    for (x0, y0), (x1, y1) in itertools.pairwise(points):
+        length = math.hypot(x1 - x0, y1 - y0)
+        if length < 1e-9:
+            continue
+        yaw = math.atan2(y1 - y0, x1 - x0)
+        n = max(1, math.ceil(length / step))
+        out.extend((x0 + (x1 - x0) * k / n, y0 + (y1 - y0) * k / n, yaw) for k in range(1, n + 1))
+    out.append(goal)
+    return tuple(out)
+
+
+def path_length(path: tuple[Pose2, ...]) -> float:
+    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in itertools.pairwise(path))

@@ -1,0 +1,220 @@
+"""The scene file: walls, cubes, regions and scripted events, editable without code.
+
+Scenes are TOML (read with the standard library's tomllib). Every mistake a user can
+make in one is reported as an InputError naming the file, the line where it can be
+found, and what was expected, never as a KeyError from deep inside the world.
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from btplan.errors import InputError, Span
+
+Point = tuple[float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class Box:
+    """A static wall or piece of furniture: an axis-aligned box on the floor."""
+
+    name: str
+    center: Point
+    size: Point
+    height: float = 0.4
+
+
+@dataclass(frozen=True, slots=True)
+class CubeSpec:
+    """A movable cube; `at` is None for a cube that an event brings in later."""
+
+    name: str
+    at: Point | None
+    color: tuple[float, float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class Region:
+    """An axis-aligned area on the floor; `aside` regions are where obstacles may be put."""
+
+    name: str
+    low: Point
+    high: Point
+    aside: bool = False
+    color: tuple[float, float, float] = (0.9, 0.9, 0.2)
+
+    def contains(self, x: float, y: float, margin: float = 0.0) -> bool:
+        return (self.low[0] + margin <= x <= self.high[0] - margin
+                and self.low[1] + margin <= y <= self.high[1] - margin)
+
+    @property
+    def center(self) -> Point:
+        return ((self.low[0] + self.high[0]) / 2, (self.low[1] + self.high[1]) / 2)
+
+
+@dataclass(frozen=True, slots=True)
+class Event:
+    """A scripted change made by an external agent.
+
+    It fires at `tick`, or `delay` ticks after the `count`-th time the literal `when`
+    (an atom such as `holding(green)`, optionally prefixed by `not`) becomes true.
+    `do` is `move` (put `cube` at `to`), `remove` (take it out of the scene) or `slip`
+    (the cube falls out of the gripper).
+    """
+
+    name: str
+    do: str
+    cube: str
+    to: Point | None = None
+    tick: int | None = None
+    when: str | None = None
+    count: int = 1
+    delay: int = 0
+
+
+@dataclass(frozen=True, slots=True)
+class Scene:
+    """Everything the PyBullet world builds; units are metres, radians and seconds."""
+
+    path: str
+    bounds: tuple[float, float, float, float]
+    start: tuple[float, float, float]
+    walls: tuple[Box, ...] = ()
+    cubes: tuple[CubeSpec, ...] = ()
+    regions: tuple[Region, ...] = ()
+    events: tuple[Event, ...] = ()
+    tick_seconds: float = 0.1
+    speed: float = 1.0
+    robot_radius: float = 0.4
+    cube_size: float = 0.12
+    near: float = 0.75
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    def region(self, name: str) -> Region | None:
+        return next((r for r in self.regions if r.name == name), None)
+
+
+_TOML_AT = re.compile(r"\(at line (\d+), column (\d+)\)")
+DO = ("move", "remove", "slip")
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read and check a scene file; raises InputError with the place to fix."""
+    where = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except OSError as error:
+        raise InputError(f"cannot read scene: {error.strerror}", Span(where, 1, 1)) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        found = _TOML_AT.search(str(error))
+        line, col = (int(found.group(1)), int(found.group(2))) if found else (1, 1)
+        lines = text.splitlines()
+        source = lines[line - 1] if 0 < line <= len(lines) else None
+        message = _TOML_AT.sub("", str(error)).strip()
+        raise InputError(f"bad TOML: {message}", Span(where, line, col), source_line=source) from None
+    return _Reader(where, text).scene(data)
+
+
+class _Reader:
+    """Turns the TOML tables into a Scene, locating errors by the key's first line."""
+
+    def __init__(self, path: str, text: str) -> None:
+        self.path = path
+        self.lines = text.splitlines()
+
+    def fail(self, message: str, key: str, hint: str | None = None) -> InputError:
+        for number, line in enumerate(self.lines, 1):
+            column = line.find(key)
+            if column >= 0 and key:
+                return InputError(message, Span(self.path, number, column + 1), hint, line)
+        return InputError(message, Span(self.path, 1, 1), hint)
+
+    def numbers(self, value: object, n: int, key: str) -> tuple[float, ...]:
+        if not (isinstance(value, list) and len(value) == n and all(
+                isinstance(v, int | float) and not isinstance(v, bool) for v in value)):
+            raise self.fail(f"'{key}' must be a list of {n} numbers", key)
+        return tuple(float(v) for v in value)
+
+    def point(self, value: object, key: str) -> Point:
+        x, y = self.numbers(value, 2, key)
+        return (x, y)
+
+    def color(self, table: dict[str, Any]) -> tuple[float, float, float]:
+        r, g, b = self.numbers(table.get("color", [0.6, 0.6, 0.6]), 3, "color")
+        return (r, g, b)
+
+    def name(self, table: dict[str, Any], kind: str) -> str:
+        name = table.get("name")
+        if not isinstance(name, str) or not name:
+            raise self.fail(f"every [[{kind}]] needs a name", f"[[{kind}]]")
+        return name
+
+    def scene(self, data: dict[str, Any]) -> Scene:
+        world = data.get("world", {})
+        robot = data.get("robot", {})
+        if "bounds" not in world:
+            raise self.fail("the scene needs [world] bounds = [x_min, x_max, y_min, y_max]", "[world]")
+        x0, x1, y0, y1 = self.numbers(world["bounds"], 4, "bounds")
+        sx, sy, syaw = self.numbers(robot.get("start", [0.0, 0.0, 0.0]), 3, "start")
+        cubes = tuple(self.cube(t) for t in data.get("cube", []))
+        scene = Scene(
+            path=self.path,
+            bounds=(x0, x1, y0, y1),
+            start=(sx, sy, syaw),
+            walls=tuple(self.wall(t) for t in data.get("wall", [])),
+            cubes=cubes,
+            regions=tuple(self.region(t) for t in data.get("region", [])),
+            events=tuple(self.event(t, {c.name for c in cubes}) for t in data.get("event", [])),
+            tick_seconds=float(world.get("tick_seconds", 0.1)),
+            speed=float(world.get("speed", 1.0)),
+            robot_radius=float(robot.get("radius", 0.4)),
+            cube_size=float(world.get("cube_size", 0.12)),
+            near=float(robot.get("near", 0.75)),
+        )
+        self.check_names(scene)
+        return scene
+
+    def wall(self, t: dict[str, Any]) -> Box:
+        return Box(self.name(t, "wall"), self.point(t.get("center"), "center"),
+                   self.point(t.get("size"), "size"), float(t.get("height", 0.4)))
+
+    def cube(self, t: dict[str, Any]) -> CubeSpec:
+        at = self.point(t["at"], "at") if "at" in t else None
+        return CubeSpec(self.name(t, "cube"), at, self.color(t))
+
+    def region(self, t: dict[str, Any]) -> Region:
+        low, high = self.point(t.get("min"), "min"), self.point(t.get("max"), "max")
+        if low[0] >= high[0] or low[1] >= high[1]:
+            raise self.fail(f"region '{t.get('name')}': min must be below max", "min")
+        return Region(self.name(t, "region"), low, high, bool(t.get("aside", False)), self.color(t))
+
+    def event(self, t: dict[str, Any], cubes: set[str]) -> Event:
+        name = self.name(t, "event")
+        do = t.get("do")
+        if do not in DO:
+            raise self.fail(f"event '{name}': 'do' must be one of {', '.join(DO)}", "do",
+                            f"got {do!r}")
+        cube = t.get("cube")
+        if cube not in cubes:
+            raise self.fail(f"event '{name}': unknown cube {cube!r}", f'"{cube}"',
+                            f"cubes are {', '.join(sorted(cubes))}")
+        if ("tick" in t) == ("when" in t):
+            raise self.fail(f"event '{name}': give exactly one of 'tick' or 'when'", name)
+        to = self.point(t["to"], "to") if "to" in t else None
+        if do == "move" and to is None:
+            raise self.fail(f"event '{name}': a move needs 'to = [x, y]'", name)
+        return Event(name, do, cube, to, t.get("tick"), t.get("when"),
+                     int(t.get("count", 1)), int(t.get("delay", 0)))
+
+    def check_names(self, scene: Scene) -> None:
+        seen: set[str] = set()
+        for name in [c.name for c in scene.cubes] + [r.name for r in scene.regions]:
+            if name in seen:
+                raise self.fail(f"the name '{name}' is used twice", f'"{name}"')
+            seen.add(name)

@@ -1,0 +1,204 @@
+"""The PyBullet scene: bodies for walls, cubes, regions and the robot, and collision queries.
+
+The robot is moved kinematically (its base pose is set each tick) and no physics step is
+taken, so a run is exactly reproducible and much faster than real time; PyBullet is used
+for geometry (collision queries through getClosestPoints) and for pictures. A grasped
+cube is rigidly attached to the gripper: its pose is recomputed from the gripper's.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import importlib
+import math
+import os
+import sys
+from collections.abc import Iterator
+from typing import Any
+
+from btplan.worlds.pybullet.motion import Pose2
+from btplan.worlds.pybullet.scene import Point, Scene
+
+HUSKY_SCALE = 0.6
+GRIP_AHEAD = 0.36   # metres from the base centre to a grasped cube
+GRIP_HEIGHT = 0.32
+PARKED_Z = -10.0    # cubes not in the scene (yet, or any more) wait far below the floor
+
+
+@contextlib.contextmanager
+def quiet_stdout() -> Iterator[None]:
+    """Send the C-level stdout (fd 1) to /dev/null: URDF loading prints warnings there."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    null = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(null, 1)
+        yield
+    finally:
+        _flush_c_stdio()  # C printf output still buffered must go to /dev/null, not to us
+        os.dup2(saved, 1)
+        os.close(saved)
+        os.close(null)
+
+
+def _box_distance(x: float, y: float, box: tuple[float, float, float, float]) -> float:
+    """Distance from a point to an axis-aligned rectangle (0 inside)."""
+    cx, cy, hx, hy = box
+    dx, dy = max(abs(x - cx) - hx, 0.0), max(abs(y - cy) - hy, 0.0)
+    return math.hypot(dx, dy)
+
+
+def _flush_c_stdio() -> None:
+    import ctypes
+
+    with contextlib.suppress(OSError, AttributeError):
+        ctypes.CDLL(None).fflush(None)
+
+
+class Sim:
+    """One PyBullet client holding the scene's bodies."""
+
+    def __init__(self, scene: Scene, gui: bool = False) -> None:
+        with quiet_stdout():  # the pybullet module prints its build time on import
+            p: Any = importlib.import_module("pybullet")
+            pybullet_data: Any = importlib.import_module("pybullet_data")
+
+        self.p = p
+        self.scene = scene
+        with quiet_stdout():
+            self.client = p.connect(p.GUI if gui else p.DIRECT)
+            p.setAdditionalSearchPath(pybullet_data.getDataPath(), physicsClientId=self.client)
+            p.loadURDF("plane.urdf", physicsClientId=self.client)
+            self.robot = p.loadURDF("husky/husky.urdf", globalScaling=HUSKY_SCALE,
+                                    physicsClientId=self.client)
+        self.walls = [self._box(w.center, w.size, w.height / 2, (0.55, 0.5, 0.45))
+                      for w in scene.walls]
+        # Footprints (centre, half sizes) of the solid bodies: a cheap first test, so that
+        # PyBullet is only asked about bodies that can touch the probe.
+        self.extent: dict[int, tuple[float, float, float, float]] = {
+            body: (w.center[0], w.center[1], w.size[0] / 2, w.size[1] / 2)
+            for body, w in zip(self.walls, scene.walls)}
+        for region in scene.regions:
+            half = ((region.high[0] - region.low[0]) / 2, (region.high[1] - region.low[1]) / 2)
+            self._box(region.center, (half[0] * 2, half[1] * 2), 0.002, region.color, solid=False)
+        size = scene.cube_size
+        self.cubes: dict[str, int] = {}
+        for cube in scene.cubes:
+            self.cubes[cube.name] = self._box((0.0, 0.0), (size, size), size / 2, cube.color)
+            self.place_cube(cube.name, cube.at)
+        self.gripper = self._box((0.0, 0.0), (0.06, 0.2), 0.03, (0.2, 0.2, 0.2), solid=False)
+        r = scene.robot_radius
+        self.probe = self._cylinder(r)
+        self.cube_probe = self._box((0.0, 0.0), (size, size), size / 2, None)
+        self.pose: Pose2 = scene.start
+        self.set_robot(scene.start)
+
+    # --- bodies --------------------------------------------------------------------------
+
+    def _box(self, center: Point, size: Point, half_height: float,
+             color: tuple[float, float, float] | None, solid: bool = True) -> int:
+        """A box resting on the floor; `solid=False` makes it visual only (regions)."""
+        p = self.p
+        half = [size[0] / 2, size[1] / 2, half_height]
+        shape = p.createCollisionShape(p.GEOM_BOX, halfExtents=half, physicsClientId=self.client) \
+            if solid else -1
+        visual = -1 if color is None else p.createVisualShape(
+            p.GEOM_BOX, halfExtents=half, rgbaColor=[*color, 1.0], physicsClientId=self.client)
+        return int(p.createMultiBody(0.0, shape, visual, [center[0], center[1], half_height],
+                                     physicsClientId=self.client))
+
+    def _cylinder(self, radius: float) -> int:
+        p = self.p
+        shape = p.createCollisionShape(p.GEOM_CYLINDER, radius=radius, height=0.3,
+                                       physicsClientId=self.client)
+        return int(p.createMultiBody(0.0, shape, -1, [0.0, 0.0, PARKED_Z], physicsClientId=self.client))
+
+    def close(self) -> None:
+        with contextlib.suppress(Exception):
+            self.p.disconnect(physicsClientId=self.client)
+
+    # --- poses ---------------------------------------------------------------------------
+
+    def set_robot(self, pose: Pose2, holding: str | None = None) -> None:
+        p, (x, y, yaw) = self.p, pose
+        self.pose = pose
+        turn = p.getQuaternionFromEuler([0.0, 0.0, yaw])
+        p.resetBasePositionAndOrientation(self.robot, [x, y, 0.08], turn, physicsClientId=self.client)
+        gx, gy = x + GRIP_AHEAD * math.cos(yaw), y + GRIP_AHEAD * math.sin(yaw)
+        p.resetBasePositionAndOrientation(self.gripper, [gx, gy, GRIP_HEIGHT + 0.1], turn,
+                                          physicsClientId=self.client)
+        if holding is not None:
+            p.resetBasePositionAndOrientation(self.cubes[holding], [gx, gy, GRIP_HEIGHT], turn,
+                                              physicsClientId=self.client)
+
+    def place_cube(self, name: str, at: Point | None) -> None:
+        """Put a cube on the floor at `at`, or park it out of the scene when `at` is None."""
+        z = self.scene.cube_size / 2 if at is not None else PARKED_Z
+        x, y = at if at is not None else (0.0, 0.0)
+        half = self.scene.cube_size / 2
+        self.extent[self.cubes[name]] = (x, y, half, half) if at is not None else (1e9, 1e9, 0, 0)
+        self.p.resetBasePositionAndOrientation(self.cubes[name], [x, y, z], [0, 0, 0, 1],
+                                               physicsClientId=self.client)
+
+    def cube_position(self, name: str) -> tuple[float, float, float]:
+        pos, _ = self.p.getBasePositionAndOrientation(self.cubes[name], physicsClientId=self.client)
+        return (float(pos[0]), float(pos[1]), float(pos[2]))
+
+    def gripper_point(self) -> Point:
+        x, y, yaw = self.pose
+        return (x + GRIP_AHEAD * math.cos(yaw), y + GRIP_AHEAD * math.sin(yaw))
+
+    # --- collision queries ---------------------------------------------------------------
+
+    def _hits(self, probe: int, at: tuple[float, float, float], bodies: list[int],
+              margin: float) -> bool:
+        reach = (self.scene.robot_radius if probe == self.probe else self.scene.cube_size) \
+            + margin + 0.02
+        near = [b for b in bodies if _box_distance(at[0], at[1], self.extent[b]) <= reach]
+        if not near:
+            return False
+        p = self.p
+        p.resetBasePositionAndOrientation(probe, at, [0, 0, 0, 1], physicsClientId=self.client)
+        return any(p.getClosestPoints(probe, body, margin, physicsClientId=self.client)
+                   for body in near)
+
+    def in_bounds(self, x: float, y: float, radius: float) -> bool:
+        x0, x1, y0, y1 = self.scene.bounds
+        return x0 + radius <= x <= x1 - radius and y0 + radius <= y <= y1 - radius
+
+    def base_free(self, x: float, y: float, cubes: list[str], margin: float = 0.0) -> bool:
+        """True when the robot's disc at (x, y) touches no wall and none of `cubes`."""
+        if not self.in_bounds(x, y, self.scene.robot_radius):
+            return False
+        bodies = self.walls + [self.cubes[c] for c in cubes]
+        return not self._hits(self.probe, (x, y, 0.15), bodies, margin)
+
+    def base_hits(self, x: float, y: float, cubes: list[str]) -> bool:
+        """True when the robot's disc at (x, y) touches one of `cubes` (walls not checked)."""
+        return self._hits(self.probe, (x, y, 0.15), [self.cubes[c] for c in cubes], 0.0)
+
+    def cube_fits(self, x: float, y: float, cubes: list[str], margin: float = 0.05) -> bool:
+        """True when a cube put down at (x, y) would touch no wall and none of `cubes`."""
+        if not self.in_bounds(x, y, self.scene.cube_size):
+            return False
+        bodies = self.walls + [self.cubes[c] for c in cubes]
+        return not self._hits(self.cube_probe, (x, y, self.scene.cube_size / 2), bodies, margin)
+
+    # --- pictures ------------------------------------------------------------------------
+
+    def snapshot(self, width: int = 480, height: int = 300) -> tuple[int, int, bytes]:
+        """An RGB picture from a fixed camera above the scene (software renderer, headless)."""
+        p = self.p
+        x0, x1, y0, y1 = self.scene.bounds
+        cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+        span = max(x1 - x0, y1 - y0)
+        view = p.computeViewMatrix([cx, cy - 0.55 * span, 0.8 * span], [cx, cy, 0.0], [0, 0, 1],
+                                   physicsClientId=self.client)
+        proj = p.computeProjectionMatrixFOV(55, width / height, 0.1, 4 * span,
+                                            physicsClientId=self.client)
+        _, _, rgba, _, _ = p.getCameraImage(width, height, view, proj,
+                                            renderer=p.ER_TINY_RENDERER,
+                                            physicsClientId=self.client)
+        pixels = bytes(bytearray(int(v) for v in rgba)) if not isinstance(rgba, bytes | bytearray) \
+            else bytes(rgba)
+        return width, height, pixels
