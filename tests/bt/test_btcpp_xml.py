@@ -20,6 +20,7 @@ from btplan.errors import InputError
 pytest.importorskip("behaviortreepy")
 from btcpp_oracle import BtcppRun, port_free_copy
 
+XML_HEAD = '<root BTCPP_format="4" main_tree_to_execute="Main">\n'
 Change = dict[int, tuple[set[tuple[str, tuple[str, ...]]], set[tuple[str, tuple[str, ...]]]]]
 
 
@@ -37,6 +38,15 @@ def side_by_side(tree: BehaviorTree, world: ScriptWorld, other: ScriptWorld, tic
 
 def test_figure7_xml_matches_the_golden_file(golden) -> None:  # type: ignore[no-untyped-def]
     golden("bt_figure7.xml", dump_xml(figure7_tree()))
+
+
+def test_a_hand_written_explicit_leaf_and_a_timeout_in_msec_are_read() -> None:
+    text = (XML_HEAD + '<BehaviorTree ID="Main"><Timeout msec="250">'
+            '<Action ID="Pick" o="cube"/></Timeout></BehaviorTree><TreeNodesModel>'
+            '<Action ID="Pick"><input_port name="o"/></Action></TreeNodesModel></root>')
+    tree = load_xml(text)
+    assert tree.root.kind == "Timeout" and tree.root.ticks == 3  # type: ignore[attr-defined]
+    assert tree.root.children[0].key == ("Pick", ("cube",))  # type: ignore[attr-defined]
 
 
 @pytest.mark.parametrize("make", [figure7_tree, lambda: BehaviorTree(every_kind_root())])
@@ -103,8 +113,6 @@ def test_export_refuses_ids_btcpp_would_reject() -> None:
         dump_xml(BehaviorTree(Sequence([Condition("go"), Action("go")])))
 
 
-XML_HEAD = '<root BTCPP_format="4" main_tree_to_execute="Main">\n'
-
 
 @pytest.mark.parametrize(("body", "message", "line"), [
     ('<BehaviorTree ID="Main">\n  <Pick o="cube"/>\n</BehaviorTree>\n</root>',
@@ -118,9 +126,21 @@ XML_HEAD = '<root BTCPP_format="4" main_tree_to_execute="Main">\n'
      "no <BehaviorTree ID=\"Main\">", 1),
     ('<BehaviorTree ID="Main">\n  <ReactiveSequence>\n</BehaviorTree></root>',
      "not well-formed XML", 4),
+    (('<BehaviorTree ID="Main">\n<RetryUntilSuccessful num_attempts="-1">\n'
+     '<ReactiveSequence/></RetryUntilSuccessful></BehaviorTree></root>'),
+     "num_attempts=-1 is not supported", 3),
+    (('<BehaviorTree ID="Main">\n<Timeout msec="soon"><ReactiveSequence/></Timeout>\n'
+     '</BehaviorTree></root>'), "msec='soon' is not a whole number", 3),
+    ('<BehaviorTree ID="Main">\n<ReactiveSequence colour="red"/></BehaviorTree></root>',
+     "<ReactiveSequence> has no attribute 'colour'", 3),
+    (('<BehaviorTree ID="Main">\n<Pick o="a" speed="3"/></BehaviorTree>\n<TreeNodesModel>'
+     '<Action ID="Pick"><input_port name="o"/></Action></TreeNodesModel></root>'),
+     "Pick has no port 'speed'", 3),
+    ('<root2/>', "expected <root>", 2),
 ])
 def test_bad_xml_is_an_input_error_with_a_location(body: str, message: str, line: int) -> None:
+    text = XML_HEAD + body if not body.startswith("<root2") else "<?xml version='1.0'?>\n" + body
     with pytest.raises(InputError) as info:
-        load_xml(XML_HEAD + body, "tree.xml")
+        load_xml(text, "tree.xml")
     assert message in info.value.message
     assert info.value.span is not None and info.value.span.line == line

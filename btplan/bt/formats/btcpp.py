@@ -242,10 +242,15 @@ class _Reader:
             raise self.error(element, f"<{tag}> needs exactly one child, not {len(children)}")
         if tag == "RetryUntilSuccessful":
             attempts = self.number(element, attrs, "num_attempts", "1")
-            return Retry(children[0], attempts=max(attempts, 1), name=name)
+            if attempts < 1:
+                raise self.error(element, f"num_attempts={attempts} is not supported",
+                                 "btplan retries a fixed number of times, at least 1")
+            return Retry(children[0], attempts=attempts, name=name)
         if tag == "Timeout":
             msec = self.number(element, attrs, "msec", str(TICK_MS))
-            return Timeout(children[0], ticks=max(1, math.ceil(msec / TICK_MS)), name=name)
+            if msec < 1:
+                raise self.error(element, f"msec={msec} leaves no time to run")
+            return Timeout(children[0], ticks=math.ceil(msec / TICK_MS), name=name)
         plain = {"Inverter": Inverter, "ForceSuccess": ForceSuccess, "ForceFailure": ForceFailure}
         return plain[tag](children[0], name=name)
 
