@@ -7,8 +7,11 @@ unique instance name through which the callbacks find its grounded key.
 
 from __future__ import annotations
 
+import contextlib
+import os
+import sys
 import xml.etree.ElementTree as ET
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 
 from btplan.bt import FAILURE, RUNNING, SUCCESS, Status
 from btplan.bt.world import LeafKey, World
@@ -49,6 +52,20 @@ def port_free_copy(xml: str) -> tuple[str, dict[str, LeafKey]]:
     return ET.tostring(root, encoding="unicode"), keys
 
 
+@contextlib.contextmanager
+def quiet_stdout() -> Iterator[None]:
+    """Send BT.CPP's C-level prints on fd 1 to /dev/null while it loads and ticks."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    try:
+        with open(os.devnull, "w") as sink:
+            os.dup2(sink.fileno(), 1)
+            yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+
+
 class BtcppRun:
     """The exported tree inside BT.CPP, its leaves answering from a ScriptWorld."""
 
@@ -64,7 +81,8 @@ class BtcppRun:
             else:
                 factory.register_simple_stateful_action(
                     ident, self._call(world.start), self._call(world.step), self._halted)
-        self.tree = factory.create_tree_from_text(text)
+        with quiet_stdout():
+            self.tree = factory.create_tree_from_text(text)
 
     def _status(self, status: Status) -> object:
         names = {SUCCESS: "SUCCESS", FAILURE: "FAILURE", RUNNING: "RUNNING"}
@@ -81,4 +99,5 @@ class BtcppRun:
         self.world.halt(self.keys[node.name()])  # type: ignore[attr-defined]
 
     def tick(self) -> Status:
-        return Status(self.tree.tick_exactly_once().name)
+        with quiet_stdout():
+            return Status(self.tree.tick_exactly_once().name)

@@ -10,11 +10,12 @@ import pytest
 from bt_stubs import example1_world, figure7_tree
 
 from btplan.bt import BehaviorTree, Fallback, Retry, Sequence
-from btplan.bt.formats import DUMP_FORMATS, dump
+from btplan.bt.formats import DUMP_FORMATS, dump, load_tree
 from btplan.bt.formats.dot import COLOURS, dump_dot
 from btplan.bt.formats.text import dump_ascii
 from btplan.bt.status import FAILURE, RUNNING, SUCCESS
 from btplan.bt.trace import TickRecorder
+from btplan.errors import InputError
 
 
 def ticked_figure7() -> tuple[BehaviorTree, dict]:  # type: ignore[type-arg]
@@ -128,3 +129,11 @@ def test_docs_pictures_render_from_the_hand_built_figure7(
         DOCS.mkdir(parents=True, exist_ok=True)
         (DOCS / picture).write_bytes(out.read_bytes())
     assert (DOCS / picture).exists(), "run pytest --update-golden to render the docs picture"
+
+
+def test_unknown_formats_are_input_errors() -> None:
+    tree = figure7_tree()
+    with pytest.raises(InputError, match="unknown tree format 'png'"):
+        dump(tree, "png")
+    with pytest.raises(InputError, match="cannot read trees in format 'dot'"):
+        load_tree("digraph {}", "dot")
