@@ -143,8 +143,44 @@ def bfs_plan(task: Task, state: frozenset[Atom], limit: int = 200_000) -> list[G
     return None
 
 
-def replanning_episode(task: Task, agents: list[Agent], seed: int, max_ticks: int) -> Episode:
-    """Execute a BFS plan step by step; replan whenever the next step cannot run or fails."""
+def pyperplan_plan(task: Task, state: frozenset[Atom]) -> list[GroundAction] | None:
+    """The same replanning, by pyperplan (greedy best-first search with h_FF).
+
+    The grounded actions become pyperplan STRIPS operators directly (wildcard deletes
+    expanded over the atoms that can exist), so no PDDL round trip is timed. Tasks with
+    negative preconditions or goals, which pyperplan's STRIPS cannot state, fall back to
+    the breadth-first planner.
+    """
+    from pyperplan.heuristics.relaxation import hFFHeuristic  # type: ignore[import-untyped]
+    from pyperplan.search import greedy_best_first_search  # type: ignore[import-untyped]
+    from pyperplan.task import Operator  # type: ignore[import-untyped]
+    from pyperplan.task import Task as StripsTask
+
+    actions = ground_all(task, state)
+    if any(not p.positive for a in actions for p in a.preconditions) or any(
+            not g.positive for g in task.goal_literals):
+        return bfs_plan(task, state)
+    universe = set(state).union(*(a.add for a in actions))
+    by_name = {str(a): a for a in actions}
+    operators = [
+        Operator(str(a), frozenset(str(p.atom) for p in a.preconditions),
+                 frozenset(str(x) for x in a.add),
+                 frozenset(str(x) for x in universe if a.deletes(x)))
+        for a in actions
+    ]
+    strips = StripsTask(task.problem.name, {str(x) for x in universe},
+                        frozenset(str(x) for x in state),
+                        frozenset(str(g.atom) for g in task.goal_literals), operators)
+    found = greedy_best_first_search(strips, hFFHeuristic(strips))
+    return None if found is None else [by_name[op.name] for op in found]
+
+
+Planner = Callable[[Task, frozenset[Atom]], "list[GroundAction] | None"]
+
+
+def replanning_episode(task: Task, agents: list[Agent], seed: int, max_ticks: int,
+                       planner: Planner = bfs_plan) -> Episode:
+    """Execute a sequential plan step by step; replan whenever the next step cannot run or fails."""
     world = SymbolicWorld(task, seed=seed)
     plan: list[GroundAction] | None = None
     step, running, calls, spent, seen = 0, False, 0, 0.0, 0
@@ -156,7 +192,7 @@ def replanning_episode(task: Task, agents: list[Agent], seed: int, max_ticks: in
         if not running:
             if plan is None or step >= len(plan) or not plan[step].applicable(state):
                 started = time.perf_counter()
-                plan, step = bfs_plan(task, state), 0
+                plan, step = planner(task, state), 0
                 spent += time.perf_counter() - started
                 calls += 1
                 if not plan:
@@ -213,6 +249,7 @@ METHODS: tuple[tuple[str, Runner], ...] = (
     ("btplan", blended_episode),
     ("btplan-no-h", functools.partial(blended_episode, heuristic=False)),
     ("replan", replanning_episode),
+    ("replan-pyperplan", functools.partial(replanning_episode, planner=pyperplan_plan)),
 )
 
 
@@ -277,7 +314,8 @@ def plot(rows: Sequence[Row], path: Path) -> None:
     for i, name in enumerate(names):
         for j, (field, label) in enumerate(metrics):
             ax = axes[i][j]
-            for method, style in (("btplan", "o-"), ("btplan-no-h", "^:"), ("replan", "s--")):
+            for method, style in (("btplan", "o-"), ("btplan-no-h", "^:"), ("replan", "s--"),
+                                  ("replan-pyperplan", "x-.")):
                 pts = [r for r in rows if r.scenario == name and r.method == method]
                 ax.plot([r.rate for r in pts], [getattr(r, field) for r in pts], style, label=method)
             ax.set_title(f"{name}: {label}", fontsize=9)

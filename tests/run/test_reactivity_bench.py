@@ -60,3 +60,11 @@ def test_a_seed_fixes_the_stream_and_both_executors_finish_under_it() -> None:
     blended = R.blended_episode(TASK, R.make_agents(scenario, streams, 0.3, 7), 7, 200)
     replanned = R.replanning_episode(TASK, R.make_agents(scenario, streams, 0.3, 7), 7, 200)
     assert blended.reached and replanned.reached
+
+
+def test_pyperplan_as_replanner_finds_a_plan_of_the_same_length() -> None:
+    task = load(str(ROOT / "domains/pick_place_obstacle.bt"))
+    state = task.initial_state
+    assert len(R.pyperplan_plan(task, state)) == len(R.bfs_plan(task, state)) == 4
+    episode = R.replanning_episode(task, [], 0, 100, planner=R.pyperplan_plan)
+    assert episode.reached and episode.planner_calls == 1
