@@ -41,7 +41,7 @@ def run(
              "fail:MoveTo@2 (repeatable; see docs/cli.md).")] = None,
     scenario: Annotated[str | None, typer.Option(
         help="A file of disturbance specs, one per line; with --sim pybullet, a scene "
-             "name that is not a file.")] = None,
+             "(.toml file, or the name of a shipped scene).")] = None,
     seed: Annotated[int, typer.Option(help="Seed of every random choice in the run.")] = 0,
     max_ticks: Annotated[int, typer.Option(min=1, help="Give up after this many ticks.")] = 1000,
     fail_prob: Annotated[list[str] | None, typer.Option(
@@ -70,12 +70,16 @@ def run(
     specs = [parse_spec(text, Span("--disturb", 1, 1)) for text in disturb or []]
     scene: str | None = None
     if scenario is not None:
-        if Path(scenario).is_file() or sim is Sim.symbolic:
-            specs.extend(parse_scenario(read_text(scenario), scenario))
-        else:
+        if sim is Sim.pybullet and (scenario.endswith(".toml") or not Path(scenario).is_file()):
             scene = scenario
+        else:
+            specs.extend(parse_scenario(read_text(scenario), scenario))
     world, scene_agents = open_world(task, sim, scene, seed, gui, record, probabilities(fail_prob))
-    result = _act(task, world, specs, scene_agents, seed, max_ticks, rate, quiet)
+    try:
+        result = _act(task, world, specs, scene_agents, seed, max_ticks, rate, quiet)
+    finally:
+        if hasattr(world, "close"):
+            world.close()
     if trace is not None:
         write_atomic(trace, records_to_jsonl(result.records))
     if plan_out is not None:
@@ -145,6 +149,10 @@ def open_world(task: Task, sim: Sim, scene: str | None, seed: int, gui: bool,
     opener = getattr(module, "open_world", None)
     if opener is None:
         raise WorldError("this installation has no PyBullet world")
+    scenes = getattr(module, "SCENES", None)
+    if scene is not None and not Path(scene).exists() and scenes is not None:
+        named = Path(scenes) / f"{scene}.toml"
+        scene = str(named) if named.exists() else scene
     world = opener(task, scene=scene, seed=seed, gui=gui, record=record)
     return world, list(world.scene_agents())
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
 from typer.testing import CliRunner
 
 from btplan.cli import app
@@ -110,3 +111,23 @@ def test_gui_needs_the_pybullet_world() -> None:
     result = runner.invoke(app, ["run", PICK_PLACE, "--gui"])
     assert result.exit_code == 2
     assert "--gui and --record need --sim pybullet" in result.stderr
+
+
+def test_a_pybullet_run_without_a_scene_is_a_clean_error() -> None:
+    result = runner.invoke(app, ["run", PICK_PLACE, "--sim", "pybullet", "--quiet"])
+    assert result.exit_code == 2
+    assert "no scene for domain 'pick_place'" in result.stderr
+    assert "Traceback" not in result.output
+
+
+@pytest.mark.slow
+def test_a_pybullet_run_acts_with_the_scene_agents(tmp_path: Path) -> None:
+    trace = tmp_path / "youbot.jsonl"
+    result = runner.invoke(app, ["run", str(DOMAINS / "youbot.bt"), "--sim", "pybullet",
+                                 "--scenario", "youbot", "--quiet", "--trace", str(trace)])
+    assert result.exit_code == 0, result.output
+    lines = [json.loads(line) for line in trace.read_text().splitlines()]
+    kinds = [d for line in lines for d in line["disturbances"]]
+    assert kinds, "the scene's scripted agents should have acted"
+    assert lines[-1]["status"] == "SUCCESS"
+    assert any(e["condition"].startswith("free(") for line in lines for e in line["expansions"])
