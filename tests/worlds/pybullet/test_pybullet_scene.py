@@ -1,0 +1,62 @@
+"""Scene files: what a user writes, and the located errors for what they get wrong."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from sim_scenes import OPEN_ROOM, YOUBOT_SCENE, write_scene
+
+from btplan.errors import InputError
+from btplan.worlds.pybullet.agents import parse_literal
+from btplan.worlds.pybullet.scene import load_scene
+
+
+def test_the_youbot_scene_loads_with_its_walls_cubes_regions_and_events() -> None:
+    scene = load_scene(YOUBOT_SCENE)
+    assert [c.name for c in scene.cubes] == ["green", "blue", "red", "yellow"]
+    assert scene.region("goal") is not None and scene.region("storage").aside  # type: ignore[union-attr]
+    assert [e.do for e in scene.events] == ["move", "move", "remove"]
+    assert scene.cubes[2].at is None  # red only arrives with an event
+
+
+def test_bad_toml_points_at_the_line(tmp_path: Path) -> None:
+    path = write_scene(tmp_path, OPEN_ROOM + "\n[[cube]]\nname = green\n")
+    with pytest.raises(InputError) as caught:
+        load_scene(path)
+    assert caught.value.span is not None and caught.value.span.line == OPEN_ROOM.count("\n") + 3
+    assert "bad TOML" in caught.value.message
+
+
+def test_an_event_on_an_unknown_cube_names_the_known_ones(tmp_path: Path) -> None:
+    event = '\n[[event]]\nname = "e"\ntick = 3\ndo = "remove"\ncube = "purple"\n'
+    with pytest.raises(InputError) as caught:
+        load_scene(write_scene(tmp_path, OPEN_ROOM + event))
+    assert "unknown cube 'purple'" in caught.value.message
+    assert caught.value.hint is not None and "green" in caught.value.hint
+    assert caught.value.source_line == 'cube = "purple"'
+
+
+def test_an_event_needs_a_tick_or_a_condition(tmp_path: Path) -> None:
+    event = '\n[[event]]\nname = "e"\ndo = "remove"\ncube = "red"\n'
+    with pytest.raises(InputError, match="exactly one of 'tick' or 'when'"):
+        load_scene(write_scene(tmp_path, OPEN_ROOM + event))
+
+
+def test_points_must_be_pairs_of_numbers(tmp_path: Path) -> None:
+    with pytest.raises(InputError, match="'at' must be a list of 2 numbers"):
+        load_scene(write_scene(tmp_path, OPEN_ROOM.replace("[2.0, 1.0]", '["a", 1.0]')))
+
+
+def test_a_missing_file_is_an_input_error(tmp_path: Path) -> None:
+    with pytest.raises(InputError, match="cannot read scene"):
+        load_scene(tmp_path / "nope.toml")
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("holding(green)", (True, "holding", ("green",))),
+    ("not near(goal)", (False, "near", ("goal",))),
+    ("hand_empty", (True, "hand_empty", ())),
+])
+def test_event_conditions_are_written_as_in_the_domain(text: str, expected: object) -> None:
+    assert parse_literal(text, None) == expected

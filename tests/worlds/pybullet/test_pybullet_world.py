@@ -1,0 +1,122 @@
+"""The PyBullet world on its own: geometric conditions, OMPL paths, refinement, skills."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from sim_scenes import YOUBOT_SCENE, figure7_tree, write_scene, youbot_task
+
+from btplan.bt import RUNNING, SUCCESS, BehaviorTree
+from btplan.model import Atom
+from btplan.worlds.pybullet import PyBulletWorld, open_world
+from btplan.worlds.pybullet.geometry import clearance, distance
+
+TASK = youbot_task()
+MOVE = TASK.domain.action_map["MoveTo"]
+CLEAR = TASK.domain.action_map["ClearPath"]
+
+
+def param(template: object, name: str) -> object:
+    return next(p for p in template.parameters if p.name == name)  # type: ignore[attr-defined]
+
+
+@pytest.fixture
+def room(tmp_path: Path) -> Iterator[PyBulletWorld]:
+    world = open_world(TASK, write_scene(tmp_path), seed=3)
+    yield world
+    world.close()
+
+
+@pytest.fixture
+def youbot() -> Iterator[PyBulletWorld]:
+    world = open_world(TASK, str(YOUBOT_SCENE), seed=3)
+    yield world
+    world.close()
+
+
+def trajectory_to(world: PyBulletWorld, target: str) -> str:
+    (name,) = world.refine(MOVE, {"l": target}, param(MOVE, "t"))  # type: ignore[arg-type]
+    return name
+
+
+def test_conditions_are_read_from_the_scene(room: PyBulletWorld) -> None:
+    assert room.check(("hand_empty", ()))
+    assert not room.check(("near", ("green",)))
+    assert not room.check(("on", ("green", "goal")))
+    assert not room.check(("near", ("red",)))  # red is not in the scene
+    facts = room.facts()
+    assert Atom("hand_empty", ()) in facts and Atom("near", ("green",)) not in facts
+
+
+def test_a_refined_trajectory_is_a_collision_free_ompl_path_to_the_target(
+        youbot: PyBulletWorld) -> None:
+    name = trajectory_to(youbot, "green")
+    traj = youbot.trajectories[name]
+    assert traj.path[0][:2] == youbot.base[:2]
+    assert distance(traj.path[-1], youbot.location("green")) <= youbot.scene.near
+    walls_and_cubes = youbot.floor_cubes("green")
+    assert all(youbot.sim.base_free(x, y, walls_and_cubes) for x, y, _ in traj.path)
+    assert youbot.check(("free", (name,))) and youbot.check(("route", ("green", name)))
+    assert youbot.plan_seconds and youbot.plan_seconds[-1] < 5
+
+
+def test_the_same_question_gets_the_same_trajectory(youbot: PyBulletWorld) -> None:
+    assert trajectory_to(youbot, "goal") == trajectory_to(youbot, "goal")
+
+
+def test_a_cube_in_the_doorway_blocks_the_only_way_and_refinement_names_it(
+        youbot: PyBulletWorld) -> None:
+    to_goal = trajectory_to(youbot, "goal")
+    assert not youbot.check(("free", (to_goal,)))
+    binding = {"t": to_goal}
+    assert youbot.refine(CLEAR, binding, param(CLEAR, "c")) == ["blue"]  # type: ignore[arg-type]
+    (pose,) = youbot.refine(CLEAR, {**binding, "c": "blue"}, param(CLEAR, "p"))  # type: ignore[arg-type]
+    spot = youbot.poses[pose]
+    storage = youbot.scene.region("storage")
+    assert storage is not None and storage.contains(*spot)
+    keep = youbot.scene.robot_radius + youbot.scene.cube_size
+    assert clearance(spot, youbot.trajectories[to_goal].path) > keep
+
+
+def test_free_is_checked_again_every_time_so_a_moved_cube_blocks_a_path(
+        room: PyBulletWorld) -> None:
+    name = trajectory_to(room, "green")
+    path = room.trajectories[name].path
+    assert room.check(("free", (name,)))
+    middle = path[len(path) // 2]
+    room.put("red", (middle[0], middle[1]))
+    assert not room.check(("free", (name,)))
+    room.put("red", None)
+    assert room.check(("free", (name,)))
+
+
+def test_the_figure7_tree_runs_the_skills_over_many_ticks(room: PyBulletWorld) -> None:
+    tree = BehaviorTree(figure7_tree(trajectory_to(room, "green"), trajectory_to(room, "goal")))
+    statuses = [tree.tick(room) for _ in range(200)]
+    assert SUCCESS in statuses
+    done = statuses.index(SUCCESS)
+    assert done > 20 and all(s is RUNNING for s in statuses[:done])
+    assert [a.name for a in room.executed] == ["MoveTo", "Pick", "MoveTo", "Place"]
+    assert room.check(("on", ("green", "goal"))) and room.check(("hand_empty", ()))
+    region = room.scene.region("goal")
+    assert region is not None and region.contains(*room.location("green"))
+
+
+def test_a_halted_move_stops_the_base_where_it_is(room: PyBulletWorld) -> None:
+    key = ("MoveTo", ("green", trajectory_to(room, "green")))
+    assert room.start(key) is RUNNING
+    room.step(key)
+    stopped = room.base
+    room.halt(key)
+    assert [a.key for a in room.halted] == [key]
+    assert room.base == stopped and stopped[:2] != room.scene.start[:2]
+    assert room.check(("hand_empty", ()))
+
+
+def test_pick_fails_out_of_reach_and_actions_are_logged_grounded(room: PyBulletWorld) -> None:
+    from btplan.bt import FAILURE
+
+    assert room.start(("Pick", ("green",))) is FAILURE
+    assert [a.ipc() for a in room.failed] == ["(pick green)"]

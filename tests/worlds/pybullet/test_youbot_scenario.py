@@ -1,0 +1,113 @@
+"""The paper's Youbot experiment, acted out in PyBullet through Algorithm 1 (headless).
+
+The scene (domains/scenes/youbot.toml) scripts the external agents; these tests check
+the trace: which actions ran in which order, which conditions were expanded, that the
+tree only grew, and where the cubes ended up.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from sim_scenes import YOUBOT_SCENE, write_scene, youbot_task
+
+from btplan.blend import BlendedLoop, TickReport
+from btplan.worlds.pybullet import PyBulletWorld, open_world
+
+TASK = youbot_task()
+
+
+def act(world: PyBulletWorld, max_ticks: int = 600) -> tuple[BlendedLoop, list[int], list[int]]:
+    """Run Algorithm 1 with the scene's agents; returns the loop, tree sizes, expansion ticks."""
+    loop = BlendedLoop(TASK, world)
+    sizes: list[int] = []
+    expanded_at: list[int] = []
+
+    def before(tick: int) -> None:
+        for agent in world.scene_agents():
+            agent.act(world, tick)
+
+    def after(report: TickReport) -> None:
+        sizes.append(len(loop.tree.nodes()))
+        expanded_at.extend(report.tick for _ in report.expansions)
+
+    result = loop.run(max_ticks, before_tick=before, on_tick=after)
+    assert result.reached, result.reason
+    return loop, sizes, expanded_at
+
+
+def names(actions: list) -> list[str]:  # type: ignore[type-arg]
+    """Actions with the world's own values (trajectory and pose names) left out."""
+    keep = {"MoveTo": 1, "Pick": 1, "Drop": 1, "Place": 2, "ClearPath": 1}
+    return [f"{a.name}({', '.join(a.args[:keep[a.name]])})" for a in actions]
+
+
+@pytest.mark.slow
+def test_the_youbot_sequence_of_the_paper() -> None:
+    world = open_world(TASK, str(YOUBOT_SCENE), seed=0)
+    try:
+        loop, sizes, _ = act(world)
+        assert names(world.executed) == [
+            "MoveTo(green)", "Pick(green)",                    # (a) picks the green cube
+            "Drop(green)", "MoveTo(blue)", "ClearPath(blue)",  # (b) blue blocks: drop, clear it
+            "MoveTo(red)", "ClearPath(red)",                   # (c, d) red put in the way: clear it
+            "MoveTo(green)", "Pick(green)",
+            "Drop(green)",                                     # (e) yellow blocks: drop green
+            "MoveTo(green)", "Pick(green)",                    # (f, g) yellow taken away: ignore it
+            "MoveTo(goal)", "Place(green, goal)",
+        ]
+        # It was on its way to the yellow cube when the agent took it away.
+        assert "MoveTo(yellow)" in names(world.halted)
+        log = [d.description for d in world.agents.log]
+        assert [text.split(":")[0] for text in log] == [
+            "agent puts red in the doorway", "agent puts yellow in the doorway",
+            "agent takes yellow away"]
+
+        conditions = [e.condition for e in loop.expansions]
+        assert conditions[:4] == ["on(green, goal)", "holding(green)", "near(green)", "near(goal)"]
+        assert conditions[4].startswith("free(")  # the path to the goal, blocked by blue
+        cleared = [a.split("(")[1].split(",")[0] for e in loop.expansions for a in e.achievers
+                   if a.startswith("ClearPath")]
+        assert cleared == ["blue", "red", "yellow"]
+        assert all(c.startswith("free(") for e, c in zip(loop.expansions, conditions)
+                   if e.achievers[0].startswith("ClearPath"))
+        assert sizes == sorted(sizes)  # the tree only grows
+
+        goal, storage = world.scene.region("goal"), world.scene.region("storage")
+        assert goal is not None and storage is not None
+        assert world.held is None and goal.contains(*world.location("green"))
+        assert storage.contains(*world.location("blue")) and storage.contains(*world.location("red"))
+        assert not world.present("yellow")
+        assert world.check(("on", ("green", "goal")))
+        assert len(world.plan_seconds) >= 10
+    finally:
+        world.close()
+
+
+SLIP = """
+[[event]]
+name = "green slips"
+when = "holding(green)"
+delay = 6
+do = "slip"
+cube = "green"
+"""
+
+
+def test_a_cube_slipping_during_moveto_is_picked_again_with_no_expansion(tmp_path: Path) -> None:
+    world = open_world(TASK, write_scene(tmp_path, events=SLIP), seed=1)
+    try:
+        loop, _, expanded_at = act(world, 300)
+        (slipped,) = world.agents.log
+        assert "slipped" in slipped.description
+        assert all(tick < slipped.tick for tick in expanded_at)
+        # The cube fell in front of the gripper, still within reach: picked again at once.
+        assert names(world.executed) == ["MoveTo(green)", "Pick(green)", "Pick(green)",
+                                         "MoveTo(goal)", "Place(green, goal)"]
+        assert names(world.halted) == ["MoveTo(goal)"]  # the slip stopped the motion
+        assert [e.condition for e in loop.expansions] == [
+            "on(green, goal)", "holding(green)", "near(green)", "near(goal)"]
+        assert world.check(("on", ("green", "goal")))
+    finally:
+        world.close()
