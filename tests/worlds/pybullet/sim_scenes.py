@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from btplan.lang import load
 from btplan.bt import Action, Condition, Fallback, Node, Sequence
+from btplan.lang import load
 from btplan.model import Task
 
 ROOT = Path(__file__).resolve().parents[3]
