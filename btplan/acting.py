@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from btplan.blend import BlendedLoop, Expansion, TickReport
-from btplan.bt import BehaviorTree, Node, Status, World
+from btplan.bt import BehaviorTree, Node, Status
 from btplan.bt.trace import TickRecorder
 from btplan.errors import PlanningError
 from btplan.model import Atom, GroundAction, Task
@@ -57,21 +57,6 @@ class RunOutcome:
         return "".join(a.ipc() + "\n" for a in self.executed)
 
 
-class _Recorder(TickRecorder):
-    """A tick recorder that gives the nodes their plain classes back after every tick.
-
-    Recording swaps node classes for traced twins; planner code that tests a node's
-    exact class would then miss them, so the tree between ticks (when it is
-    expanded) must look exactly as it does without a recorder.
-    """
-
-    def tick(self, tree: BehaviorTree, world: World) -> Status:
-        status = super().tick(tree, world)
-        self.detach(tree)
-        self.attach(tree)
-        return status
-
-
 class _Observer:
     """Turns what the loop and the world did around one tick into a TickRecord."""
 
@@ -79,7 +64,7 @@ class _Observer:
                  view: TickView | None, rate: float | None) -> None:
         self.world, self.agents, self.tree, self.view = world, list(agents), tree, view
         self.period = 1.0 / rate if rate else 0.0
-        self.recorder = _Recorder()
+        self.recorder = TickRecorder()
         self.recorder.attach(tree)
         self.records: list[TickRecord] = []
         self._facts: frozenset[Atom] = world.facts()
