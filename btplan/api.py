@@ -1,11 +1,13 @@
 """The library's front door: load a task, plan a tree for it.
 
 `plan` runs Algorithm 1 offline against the symbolic world from the problem's
-initial state. Because conflict resolution may reorder parts of the tree after they
-ran, a tree that reached the goal once is run again from the initial state; runs
-repeat (the tree keeps growing) until one reaches the goal with no expansion at all.
-So every tree `plan` returns reaches the goal when ticked from the initial state, and
-`executed` is the action sequence of that last, expansion-free run.
+initial state. Conflict resolution may move subtrees before parts of the tree that
+already ran, and a tree built in one state may act differently from another, so
+offline planning starts the world afresh from the initial state whenever a subtree
+was moved, and once the goal is reached, runs the tree once more from the initial
+state. Runs repeat (the tree keeps growing) until one reaches the goal with no
+expansion at all: every tree `plan` returns reaches the goal when ticked from the
+initial state, and `executed` is the action sequence of that last run.
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ from btplan.planner import PlannerOptions
 from btplan.worlds.symbolic import SymbolicWorld
 
 DEFAULT_MAX_TICKS = 100_000
-DEFAULT_MAX_ROUNDS = 4
+DEFAULT_MAX_ROUNDS = 64
 
 
 def load(*paths: str, problem: str | None = None) -> Task:
@@ -87,12 +89,19 @@ def plan(
         if on_expansion is not None:
             for expansion in report.expansions:
                 on_expansion(loop.tree, expansion)
+        if any(e.moves for e in report.expansions):
+            raise _Restart(report.tick)
 
     for rounds in range(1, DEFAULT_MAX_ROUNDS + 1):
         if rounds > 1:
             world = SymbolicWorld(task, seed=seed)
             loop.use_world(world)
-        result = loop.run(ticks_left, on_tick=watch)
+        ticks_before = loop.ticks
+        try:
+            result = loop.run(ticks_left, on_tick=watch)
+        except _Restart:
+            ticks_left -= loop.ticks - ticks_before
+            continue
         ticks_left -= result.ticks
         if not result.reached:
             raise BudgetExceededError(result.reason)
@@ -107,6 +116,10 @@ def plan(
         f"after {DEFAULT_MAX_ROUNDS} runs from the initial state the tree still needed "
         "expansions; the order it found depends on the state it was built in"
     )
+
+
+class _Restart(Exception):
+    """A subtree moved: start the world afresh from the initial state."""
 
 
 def _stats(loop: BlendedLoop, world: SymbolicWorld, rounds: int, seconds: float) -> PlanStats:

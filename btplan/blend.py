@@ -10,11 +10,12 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from btplan.bt import FAILURE, SUCCESS, Action, BehaviorTree, LeafKey, Node, Status
+from btplan.bt import FAILURE, SUCCESS, Action, BehaviorTree, Fallback, LeafKey, Node, Status
 from btplan.errors import BudgetExceededError, NoAchieverError, NoProgressError
 from btplan.model import Atom, GroundAction, GroundLiteral, Task
 from btplan.planner import (
     AchieverIndex,
+    Judge,
     PlannerOptions,
     PlanningWorld,
     expand_tree,
@@ -23,7 +24,8 @@ from btplan.planner import (
     literal_of,
     resolve_conflicts,
 )
-from btplan.planner.expand import non_circular, pursued
+from btplan.planner.conflicts import achiever_leaves, alternative_conflicts
+from btplan.planner.expand import achiever_sequence, conditions_bfs, non_circular, pursued
 
 
 @dataclass
@@ -128,36 +130,87 @@ class BlendedLoop:
                 self._dead.add(node)
                 missing.append(str(literal))
                 continue
-            if len(self.expansions) >= self.options.max_expansions:
-                raise BudgetExceededError(
-                    f"the expansion budget ({self.options.max_expansions}) ran out "
-                    f"while {literal} still fails"
-                )
             return self._apply(node, literal, achievers)
+        more = self._reexpand(state)
+        if more is not None:
+            return more
         if missing:
             raise NoAchieverError(
                 "no action can make " + " or ".join(sorted(set(missing))) + " hold"
             )
         return None
 
+    def _reexpand(self, state: frozenset[Atom]) -> Expansion | None:
+        """Give a failed, already expanded condition the achievers that apply now.
+
+        Refinement depends on the state (the paper's RefineActions), so the achievers
+        chosen when a condition was first expanded may not fit the state it fails in
+        later. Appending alternatives keeps the tree growing, never rebuilt.
+        """
+        for node in conditions_bfs(self.tree.root):
+            fallback = node.parent
+            if (node.status is not FAILURE or node not in self._expanded or node in self._dead
+                    or not isinstance(fallback, Fallback) or fallback.children[0] is not node
+                    or fallback.status is not FAILURE):
+                continue
+            literal = literal_of(node)
+            assert literal is not None
+            present = {leaf.key for leaf in achiever_leaves(fallback)}
+            limit = len(present) + self.options.max_alternatives
+            found = self.index.achievers(literal, state, self.world.refine, limit)
+            fresh = [a for a in non_circular(found, pursued(node)) if a.key not in present]
+            if fresh and len(self.expansions) >= self.options.max_expansions:
+                raise BudgetExceededError(
+                    f"the expansion budget ({self.options.max_expansions}) ran out "
+                    f"while {literal} still fails"
+                )
+            added = self._append_alternatives(fallback, fresh)
+            if added:
+                return self._record(literal, added, 0, 0)
+        return None
+
+    def _append_alternatives(
+        self, fallback: Fallback, actions: list[GroundAction]
+    ) -> list[GroundAction]:
+        added: list[GroundAction] = []
+        for action in actions[: self.options.max_alternatives]:
+            self.grounding[action.key] = action
+            alternative = achiever_sequence(action, self.task)
+            fallback.append(alternative)
+            if alternative_conflicts(fallback, alternative, self._judge()):
+                fallback.remove(alternative)
+            else:
+                added.append(action)
+        return added
+
+    def _record(
+        self, literal: GroundLiteral, achievers: list[GroundAction], conflicts: int, moves: int
+    ) -> Expansion:
+        expansion = Expansion(self.ticks, str(literal), [str(a) for a in achievers], conflicts,
+                              moves)
+        self.expansions.append(expansion)
+        return expansion
+
     def _apply(
         self, node: Node, literal: GroundLiteral, achievers: list[GroundAction]
     ) -> Expansion:
+        """ExpandTree (Algorithm 2), then IncreasePriority while in conflict (lines 11-12)."""
+        if len(self.expansions) >= self.options.max_expansions:
+            raise BudgetExceededError(
+                f"the expansion budget ({self.options.max_expansions}) ran out "
+                f"while {literal} still fails"
+            )
         for action in achievers:
             self.grounding[action.key] = action
         subtree = expand_tree(self.tree, node, achievers, self.task)
         resolution = resolve_conflicts(
-            self.tree, subtree, self.grounding, self.options.reorder_goals
+            self.tree, subtree, self._judge(), self.options.reorder_goals
         )
-        expansion = Expansion(
-            tick=self.ticks,
-            condition=str(literal),
-            achievers=[str(a) for a in achievers],
-            conflicts_resolved=len(resolution.conflicts),
-            moves=resolution.moves,
-        )
-        self.expansions.append(expansion)
-        return expansion
+        return self._record(literal, achievers, len(resolution.conflicts), resolution.moves)
+
+    def _judge(self) -> Judge:
+        mutexes = self.index.mutexes if self.options.mutexes else None
+        return Judge(self.grounding, mutexes)
 
     def _stall(self, state: frozenset[Atom]) -> None:
         """The tree failed with nothing to expand (an action failed): retry, a few times."""

@@ -22,6 +22,7 @@ from btplan.model import (
 )
 from btplan.planner.grounding import bindings, unify
 from btplan.planner.heuristic import RelaxedModel
+from btplan.planner.mutex import Mutexes
 from btplan.planner.options import PlannerOptions
 from btplan.planner.protocol import Refiner
 
@@ -38,6 +39,7 @@ class AchieverIndex:
                 key = (effect.predicate, effect.positive)
                 self._by_effect.setdefault(key, []).append((template, effect))
         self._relaxed: RelaxedModel | None = None
+        self._mutexes: Mutexes | None = None
 
     @property
     def relaxed(self) -> RelaxedModel:
@@ -45,8 +47,19 @@ class AchieverIndex:
             self._relaxed = RelaxedModel(self.task)
         return self._relaxed
 
+    @property
+    def mutexes(self) -> Mutexes:
+        """h^2 mutexes from the initial state, built on first use."""
+        if self._mutexes is None:
+            self._mutexes = Mutexes(self.relaxed.actions, self.task.initial_state)
+        return self._mutexes
+
     def achievers(
-        self, condition: GroundLiteral, state: frozenset[Atom], refine: Refiner | None
+        self,
+        condition: GroundLiteral,
+        state: frozenset[Atom],
+        refine: Refiner | None,
+        limit: int | None = None,
     ) -> list[GroundAction]:
         """Grounded actions whose effects make `condition` hold, best first, bounded.
 
@@ -69,7 +82,7 @@ class AchieverIndex:
         ranked = sorted(found.values(), key=lambda a: self._rank(a, state))
         if self.options.heuristic:
             ranked = [a for a in ranked if self._rank(a, state)[0] < math.inf]
-        return ranked[: self.options.max_alternatives]
+        return ranked[: limit or self.options.max_alternatives]
 
     def _rank(self, action: GroundAction, state: frozenset[Atom]) -> tuple[float, int, str]:
         failing = sum(1 for p in action.preconditions if not p.holds(state))

@@ -1,22 +1,21 @@
-"""Conflicts and IncreasePriority (Algorithm 1, lines 11-12).
+"""Conflicts: the test of Algorithm 1, line 11.
 
 A subtree placed in a Sequence runs only once every earlier sibling succeeded, that is
 while each earlier sibling's condition holds (the paper: "the new subtree will be
 executed if and only if h = c holds"). So, for the new subtree N and each earlier
 sibling X along N's chain of Sequence ancestors, there is a conflict when
 
-  (a) an action that achieves X's condition also makes a condition N needs false
-      (Pick(cube) achieves holding(cube) and deletes hand_empty, which N needs), or
+  (a) N needs a condition that cannot hold while X's condition does (holding(cube)
+      excludes hand_empty, which N needs); mutexes tell, and where they do not, the
+      paper's test is used: an action achieving X's condition makes it false; or
   (b) an action of N makes X's condition false: N would undo what an earlier part
       achieved and still relies on.
 
-IncreasePriority moves N one place left; when N is leftmost it goes before its
-parent. Only a Sequence slot keeps the meaning "do this first", so "before its
-parent" climbs to the nearest enclosing Sequence (a Fallback slot would turn N into an
-alternative). Once N has moved, it must also not break what now follows it:
+Where N is moved to is btplan.planner.priority's business. Once N has moved, it must
+also not break what now follows it:
 
   (c) an action achieving a later sibling's condition must not make N's condition false,
-  (d) an action of N must not make a condition a later sibling needs false.
+  (d) a later sibling must not need a condition that N's condition excludes.
 """
 
 from __future__ import annotations
@@ -24,25 +23,80 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from btplan.bt import Action, BehaviorTree, Composite, Fallback, LeafKey, Node
+from btplan.bt import Action, Fallback, LeafKey, Node
 from btplan.bt import Sequence as SequenceNode
-from btplan.errors import UnresolvableConflictError
 from btplan.model import GroundAction, GroundLiteral
 from btplan.planner.expand import literal_of
+from btplan.planner.mutex import Mutexes
 
 Grounding = Mapping[LeafKey, GroundAction]
 
 
 @dataclass(frozen=True, slots=True)
 class Conflict:
-    """An action whose effect makes a condition false where the tree relies on it."""
+    """Why a place is bad: an effect that breaks a condition, or two exclusive conditions."""
 
-    action: str
+    cause: str
     condition: str
     rule: str
 
     def __str__(self) -> str:
-        return f"{self.action} makes {self.condition} false ({self.rule})"
+        return f"{self.cause} {self.condition} ({self.rule})"
+
+
+@dataclass(frozen=True, slots=True)
+class Judge:
+    """What conflict checks know: the grounded actions of the tree and, if built, mutexes.
+
+    Without mutexes (or for atoms they do not cover, such as values a backend refined)
+    exclusion falls back to the paper's wording: an action achieving the earlier
+    condition has an effect that makes the needed condition false.
+    """
+
+    grounding: Grounding
+    mutexes: Mutexes | None = None
+
+    def threatens(
+        self, doers: list[Action], conditions: list[GroundLiteral], rule: str
+    ) -> list[Conflict]:
+        """Actions among `doers` whose effects make one of `conditions` false."""
+        found: list[Conflict] = []
+        for leaf in doers:
+            action = self.grounding.get(leaf.key)
+            if action is None:
+                continue
+            for literal in conditions:
+                if falsifies(action, literal):
+                    found.append(Conflict(str(action), f"makes {literal} false", rule))
+        return found
+
+    def blocks(
+        self, held: list[GroundLiteral], node: Node, doers: list[Action], rule: str
+    ) -> list[Conflict]:
+        """Conflicts when every way `node` can succeed needs something `held` excludes."""
+        ways = needs_by_alternative(node)
+        found: list[Conflict] = []
+        for needs in ways:
+            conflicts = self.excludes(held, needs, doers, rule)
+            if not conflicts:
+                return []
+            found += conflicts
+        return found
+
+    def excludes(
+        self, held: list[GroundLiteral], needed: list[GroundLiteral], doers: list[Action], rule: str
+    ) -> list[Conflict]:
+        """Needed conditions that cannot hold while the `held` ones do."""
+        found: list[Conflict] = []
+        proxy: list[GroundLiteral] = []
+        for need in needed:
+            if self.mutexes is None or not self.mutexes.knows(need.atom):
+                proxy.append(need)
+                continue
+            for hold in held:
+                if self.mutexes.exclusive(hold, need):
+                    found.append(Conflict(str(hold), f"excludes {need}", rule))
+        return found + (self.threatens(doers, proxy, rule) if proxy else [])
 
 
 # --- what a subtree guarantees, needs and does ---------------------------------------------
@@ -80,19 +134,24 @@ def achiever_leaves(node: Node) -> list[Action]:
     return []
 
 
-def requirements(node: Node) -> list[GroundLiteral]:
-    """Conditions `node` needs to do its work: the preconditions in its alternatives."""
+def needs_by_alternative(node: Node) -> list[list[GroundLiteral]]:
+    """For each way `node` can succeed, the conditions that way needs.
+
+    A condition needs itself; an atomic BT's alternatives need their preconditions; a
+    Sequence needs all its children's conditions; an action needs nothing here (its
+    preconditions are its siblings).
+    """
     literal = literal_of(node)
     if literal is not None:
-        return [literal]
+        return [[literal]]
     if isinstance(node, Fallback):
-        needs: list[GroundLiteral] = []
-        for child in node.children[1:]:
-            if isinstance(child, SequenceNode):
-                needs.extend(g for c in child.children[:-1] for g in guarantees(c))
-        return needs
+        return [
+            [g for c in child.children[:-1] for g in guarantees(c)]
+            for child in node.children[1:]
+            if isinstance(child, SequenceNode)
+        ]
     if isinstance(node, SequenceNode):
-        return [g for child in node.children for g in guarantees(child)]
+        return [[g for child in node.children for g in guarantees(child)]]
     return []
 
 
@@ -102,24 +161,10 @@ def falsifies(action: GroundAction, literal: GroundLiteral) -> bool:
     return literal.atom in action.add
 
 
-def _clashes(
-    doers: list[Action], conditions: list[GroundLiteral], grounding: Grounding, rule: str
-) -> list[Conflict]:
-    found: list[Conflict] = []
-    for leaf in doers:
-        action = grounding.get(leaf.key)
-        if action is None:
-            continue
-        for literal in conditions:
-            if falsifies(action, literal):
-                found.append(Conflict(str(action), str(literal), rule))
-    return found
-
-
 # --- finding conflicts ---------------------------------------------------------------------
 
 
-def _sequence_slots(node: Node) -> list[tuple[SequenceNode, int]]:
+def sequence_slots(node: Node) -> list[tuple[SequenceNode, int]]:
     """(Sequence ancestor, index of the child that contains `node`), innermost first."""
     slots: list[tuple[SequenceNode, int]] = []
     child = node
@@ -131,160 +176,52 @@ def _sequence_slots(node: Node) -> list[tuple[SequenceNode, int]]:
     return slots
 
 
-def find_conflicts(subtree: Node, grounding: Grounding) -> list[Conflict]:
+def find_conflicts(subtree: Node, judge: Judge) -> list[Conflict]:
     """Rules (a) and (b) for `subtree` where it stands now."""
-    needs = requirements(subtree)
     own = achiever_leaves(subtree)
     found: list[Conflict] = []
-    for sequence, index in _sequence_slots(subtree):
+    for sequence, index in sequence_slots(subtree):
         for earlier in sequence.children[:index]:
-            found += _clashes(achiever_leaves(earlier), needs, grounding, "an earlier action")
-            found += _clashes(own, guarantees(earlier), grounding, "undoes earlier work")
+            held = guarantees(earlier)
+            found += judge.blocks(held, subtree, achiever_leaves(earlier), "needed after it holds")
+            found += judge.threatens(own, held, "undoes earlier work")
     return found
 
 
-def placement_conflicts(moved: Node, grounding: Grounding) -> list[Conflict]:
-    """Rules (c) and (d) for a subtree that was moved before some siblings."""
+def placement_conflicts(moved: Node, judge: Judge) -> list[Conflict]:
+    """Rules (c) and (d) for a subtree that was moved before some siblings.
+
+    The action that ends an achiever sequence is exempt from (c): once it has run,
+    the enclosing condition holds and the sequence is not ticked any more, so it may
+    use up what came before it (stack(b, c) makes clear(c) false).
+    """
     parent = moved.parent
     if not isinstance(parent, SequenceNode):
         return []
     index = parent.index_of(moved)
     kept = guarantees(moved)
     own = achiever_leaves(moved)
+    later = parent.children[index + 1 :]
+    if isinstance(parent.parent, Fallback) and later and isinstance(later[-1], Action):
+        later = later[:-1]
     found: list[Conflict] = []
-    for later in parent.children[index + 1 :]:
-        found += _clashes(achiever_leaves(later), kept, grounding, "a later action")
-        found += _clashes(own, requirements(later), grounding, "breaks later work")
+    for sibling in later:
+        found += judge.threatens(achiever_leaves(sibling), kept, "later work undoes it")
+        found += judge.blocks(kept, sibling, own, "later work needs otherwise")
     return found
 
 
-# --- moving subtrees -----------------------------------------------------------------------
-
-
-def increase_priority(tree: BehaviorTree, subtree: Node) -> bool:
-    """Move `subtree` one step earlier; False when no earlier Sequence slot exists."""
-    parent = subtree.parent
-    if isinstance(parent, SequenceNode):
-        index = parent.index_of(subtree)
-        if index > 0:
-            parent.remove(subtree)
-            parent.insert(index - 1, subtree)
-            return True
-    child: Node | None = parent
-    above = parent.parent if parent is not None else None
-    while above is not None and not isinstance(above, SequenceNode):
-        child, above = above, above.parent
-    if above is None or child is None or parent is None:
-        return False
-    parent.remove(subtree)
-    above.insert(above.index_of(child), subtree)
-    return True
-
-
-@dataclass(frozen=True, slots=True)
-class Resolution:
-    """What conflict resolution did: the conflicts found first and the moves made."""
-
-    conflicts: tuple[Conflict, ...]
-    moves: int
-
-
-def resolve_conflicts(
-    tree: BehaviorTree, subtree: Node, grounding: Grounding, reorder_goals: bool = True
-) -> Resolution:
-    """Algorithm 1, lines 11-12: move `subtree` left until the tree is free of conflicts.
-
-    Positions are tried in the paper's order. If none is free of conflicts and
-    `reorder_goals` is on, the subtree goes back and an enclosing subtree is moved
-    left instead (reordering sibling goals, which solves Sussman's anomaly). If that
-    fails too, UnresolvableConflictError names the conflicts.
-    """
-    first = tuple(find_conflicts(subtree, grounding))
-    if not first:
-        return Resolution((), 0)
-    if prune_conflicting_alternatives(subtree, grounding) and not find_conflicts(
-        subtree, grounding
-    ):
-        return Resolution(first, 0)
-    home = _position(subtree)
-    moves = 0
-    while increase_priority(tree, subtree):
-        moves += 1
-        if not find_conflicts(subtree, grounding) and not placement_conflicts(subtree, grounding):
-            return Resolution(first, moves)
-    _restore(subtree, home)
-    if reorder_goals:
-        moved = _reorder_enclosing(subtree, grounding)
-        if moved:
-            return Resolution(first, moved)
-    listed = "; ".join(sorted({str(c) for c in first}))
-    raise UnresolvableConflictError(
-        f"no conflict-free place for the subtree achieving {subtree.children[0].name}: {listed}"
-        if isinstance(subtree, Composite) and subtree.children
-        else f"no conflict-free place for {subtree.name}: {listed}"
-    )
-
-
-def prune_conflicting_alternatives(subtree: Node, grounding: Grounding) -> bool:
-    """Drop the alternatives of a new atomic BT that conflict where it stands.
-
-    Only when at least one alternative is free of conflicts: a fallback keeps every
-    way that works here rather than moving all of them (a departure from the paper,
-    which moves the whole subtree; see docs/planner.md).
-    """
-    if not isinstance(subtree, Fallback) or len(subtree.children) < 3:
-        return False
-    bad = [alt for alt in subtree.children[1:] if _alternative_conflicts(subtree, alt, grounding)]
-    if not bad or len(bad) == len(subtree.children) - 1:
-        return False
-    for alt in bad:
-        subtree.remove(alt)
-    return True
-
-
-def _alternative_conflicts(subtree: Fallback, alternative: Node, grounding: Grounding) -> bool:
+def alternative_conflicts(
+    subtree: Fallback, alternative: Node, judge: Judge, depth: int | None = None
+) -> bool:
+    """Whether one alternative of an atomic BT conflicts, looking `depth` Sequences up."""
     needs = [g for c in alternative.children[:-1] for g in guarantees(c)]
     own = [c for c in alternative.children[-1:] if isinstance(c, Action)]
-    for sequence, index in _sequence_slots(subtree):
+    for sequence, index in sequence_slots(subtree)[:depth]:
         for earlier in sequence.children[:index]:
-            if _clashes(achiever_leaves(earlier), needs, grounding, ""):
+            held = guarantees(earlier)
+            if judge.excludes(held, needs, achiever_leaves(earlier), ""):
                 return True
-            if _clashes(own, guarantees(earlier), grounding, ""):
+            if judge.threatens(own, held, ""):
                 return True
     return False
-
-
-def _position(node: Node) -> tuple[Composite, int]:
-    parent = node.parent
-    assert parent is not None, "a subtree with a conflict has a Sequence ancestor"
-    return parent, parent.index_of(node)
-
-
-def _restore(node: Node, home: tuple[Composite, int]) -> None:
-    if node.parent is not None:
-        node.parent.remove(node)
-    parent, index = home
-    parent.insert(index, node)
-
-
-def _reorder_enclosing(subtree: Node, grounding: Grounding) -> int:
-    """Move an ancestor of `subtree` left in its Sequence until nothing conflicts.
-
-    Innermost ancestor first; each is put back where it was if no place works.
-    """
-    ancestor = subtree.parent
-    while ancestor is not None and ancestor.parent is not None:
-        sequence = ancestor.parent
-        if isinstance(sequence, SequenceNode):
-            home = sequence.index_of(ancestor)
-            for index in range(home - 1, -1, -1):
-                sequence.remove(ancestor)
-                sequence.insert(index, ancestor)
-                if not find_conflicts(subtree, grounding) and not placement_conflicts(
-                    ancestor, grounding
-                ):
-                    return home - index
-            sequence.remove(ancestor)
-            sequence.insert(home, ancestor)
-        ancestor = sequence
-    return 0

@@ -43,6 +43,21 @@ def literal_of(node: Node) -> GroundLiteral | None:
     return None
 
 
+def condition_copy(node: Node) -> Node | None:
+    """A fresh plain node for the condition `node` checks or achieves, if it has one."""
+    literal = literal_of(node)
+    if literal is None and isinstance(node, Fallback) and node.children:
+        first = node.children[0]
+        literal = literal_of(first)
+        node = first
+    if literal is None:
+        return None
+    leaf = node if type(node) is Condition else node.children[0]
+    assert isinstance(leaf, Condition)
+    copy = Condition(leaf.ident, leaf.args, leaf.ports)
+    return copy if literal.positive else Inverter(copy)
+
+
 def initial_tree(task: Task) -> BehaviorTree:
     """Algorithm 1, lines 1-3: the goal conditions in a Sequence; one goal stands alone."""
     goals = [condition_node(g, task) for g in task.goal_literals]
@@ -56,10 +71,14 @@ def atomic_bt(condition: Node, achievers: Sequence[GroundAction], task: Task) ->
     `condition` itself becomes the first child, so it must be detached already.
     """
     alternatives: list[Node] = [condition]
-    for action in achievers:
-        steps = [condition_node(p, task) for p in action.preconditions]
-        alternatives.append(SequenceNode([*steps, action_node(action)]))
+    alternatives += [achiever_sequence(action, task) for action in achievers]
     return Fallback(alternatives)
+
+
+def achiever_sequence(action: GroundAction, task: Task) -> SequenceNode:
+    """Sequence(pre(A)..., A): one alternative of an atomic BT."""
+    steps = [condition_node(p, task) for p in action.preconditions]
+    return SequenceNode([*steps, action_node(action)])
 
 
 def expand_tree(

@@ -14,7 +14,8 @@ class PlannerOptions:
     groundings enumerated per action template before ranking. `heuristic` ranks
     achievers by a relaxed-reachability estimate (h_add) instead of the first match.
     `reorder_goals` lets conflict resolution move an enclosing subtree when moving
-    the new subtree alone, as the paper does, finds no conflict-free place.
+    the new subtree alone, as the paper does, finds no conflict-free place. `mutexes`
+    judges conflicts by h^2 mutual exclusion rather than by single effects.
     """
 
     max_expansions: int = 1000
@@ -22,4 +23,5 @@ class PlannerOptions:
     max_bindings: int = 64
     heuristic: bool = True
     reorder_goals: bool = True
+    mutexes: bool = True
     stall_limit: int = 3
