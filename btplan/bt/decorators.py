@@ -81,9 +81,11 @@ class Retry(Decorator):
     """Gives a failing child up to `attempts` tries (BT.CPP RetryUntilSuccessful).
 
     Child SUCCESS: SUCCESS, and the count starts again. Child RUNNING: RUNNING.
-    Child FAILURE: one attempt is used; while attempts remain the decorator returns
-    RUNNING and ticks the child afresh on the next tick (as BT.CPP does, so a retry
-    never spins inside one tick); after the last attempt it returns FAILURE.
+    Child FAILURE uses up one attempt; after the last one the decorator returns FAILURE.
+    While attempts remain, what happens next follows BT.CPP 4: a child that failed at
+    once (it was not RUNNING before this tick) is tried again on the next tick, and the
+    decorator returns RUNNING meanwhile, so a retry loop never spins inside one tick; a
+    child that failed after RUNNING is started again within the same tick.
     """
 
     __slots__ = ("_failures", "attempts")
@@ -97,15 +99,21 @@ class Retry(Decorator):
         self._failures = 0
 
     def tick(self, world: World) -> Status:
-        status = self._children[0].tick(world)
-        if status is FAILURE:
+        child = self._children[0]
+        while True:
+            fresh = child.status is not RUNNING
+            status = child.tick(world)
+            if status is not FAILURE:
+                if status is SUCCESS:
+                    self._failures = 0
+                break
             self._failures += 1
-            if self._failures < self.attempts:
-                status = RUNNING
-            else:
+            if self._failures >= self.attempts:
                 self._failures = 0
-        elif status is SUCCESS:
-            self._failures = 0
+                break
+            if fresh:
+                status = RUNNING
+                break
         self.status = status
         return status
 

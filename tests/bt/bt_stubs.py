@@ -191,17 +191,25 @@ def every_kind_root() -> Node:
 
 
 def random_root(rng: random.Random, depth: int = 3) -> Node:
-    """A random tree of Sequences, Fallbacks, Inverters, conditions and actions."""
+    """A random tree of every node kind over conditions p/q and actions A/B."""
     if depth == 0 or rng.random() < 0.3:
         arg = rng.choice(["a", "b"])
         if rng.random() < 0.5:
             return Condition(rng.choice(["p", "q"]), (arg,), ("x",))
         return Action(rng.choice(["A", "B"]), (arg,), ("y",))
     roll = rng.random()
-    if roll < 0.15:
-        return Inverter(random_root(rng, depth - 1))
-    kind = Sequence if roll < 0.6 else Fallback
+    if roll < 0.2:
+        child = random_root(rng, depth - 1)
+        decorator = rng.choice(["inverter", "success", "failure", "retry"])
+        if decorator == "retry":
+            return Retry(child, attempts=rng.randint(1, 3))
+        return {"inverter": Inverter, "success": ForceSuccess, "failure": ForceFailure
+                }[decorator](child)
     children = [random_root(rng, depth - 1) for _ in range(rng.randint(1, 3))]
+    if roll < 0.3:
+        return Parallel(children, success=rng.randint(1, len(children)),
+                        failure=rng.randint(1, len(children)))
+    kind = Sequence if roll < 0.65 else Fallback
     return kind(children, memory=rng.random() < 0.25)
 
 

@@ -57,6 +57,14 @@ def test_retry_uses_one_attempt_per_failure_and_reports_running_between() -> Non
     assert retry.tick(world) is SUCCESS, "the count starts again after the last failure"
 
 
+def test_retry_restarts_within_the_tick_a_child_that_failed_after_running() -> None:
+    """BT.CPP 4 does the same; only a child failing at once waits for the next tick."""
+    world = ScriptWorld(scripts={"A": [RUNNING, FAILURE, SUCCESS]})
+    retry = Retry(Action("A"), attempts=2)
+    assert [retry.tick(world), retry.tick(world)] == [RUNNING, SUCCESS]
+    assert world.take_log() == [("start", "A()"), ("step", "A()"), ("start", "A()")]
+
+
 def test_retry_count_resets_on_success_and_on_halt() -> None:
     world = ScriptWorld(scripts={"A": [FAILURE, SUCCESS, FAILURE, FAILURE]})
     retry = Retry(Action("A"), attempts=2)

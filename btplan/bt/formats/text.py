@@ -31,7 +31,8 @@ def _line(node: Node, status: Status | None, traced: bool) -> str:
     elif isinstance(node, Leaf):
         text = f"({escape(node.name)})"
     else:
-        text = escape(f"{node_label(node)} {node.kind}")
+        label = node_label(node)
+        text = escape(label if label.startswith(node.kind) else f"{label} {node.kind}")
         text += f" [italic]{escape(node.name)}[/]" if node.name else ""
     if status in STYLES:
         assert status is not None
