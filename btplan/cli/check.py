@@ -7,9 +7,10 @@ from typing import Annotated
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 
-from btplan.cli.app import app, guarded
-from btplan.lang import Collection, collect
+from btplan.cli.app import EXIT_BAD_INPUT, app, format_input_error, guarded, stderr
+from btplan.lang import Collection, InputErrors, collect
 from btplan.model import ROOT_TYPE
 
 stdout = Console(highlight=False, soft_wrap=True)
@@ -27,7 +28,13 @@ def check(
     ] = False,
 ) -> None:
     """Check domains and problems; print a summary, or every error with its place."""
-    collection = collect(files)
+    try:
+        collection = collect(files)
+    except InputErrors as errors:
+        for error in errors.errors:
+            stderr.print(f"[bold red]error:[/] {escape(format_input_error(error))}")
+        stderr.print(f"{len(errors.errors)} errors")
+        raise typer.Exit(EXIT_BAD_INPUT) from None
     if as_json:
         typer.echo(json.dumps(to_json(collection), indent=2))
         return

@@ -15,6 +15,7 @@ from btplan.errors import InputError, Span
 from btplan.io import STDIO, read_text
 from btplan.lang.bt_reader import read_bt
 from btplan.lang.names import check_unique, suggest
+from btplan.lang.report import Report
 from btplan.lang.syntax import DomainSyntax, ProblemSyntax
 from btplan.lang.validate import build_domain, build_problem
 from btplan.model import ROOT_TYPE, Domain, Problem, Task, TypedName
@@ -81,11 +82,14 @@ def parse_bt(text: str, path: str) -> BtFile:
         raise domains[1].name.at.error(
             "a file holds at most one domain", "put each domain in a file of its own"
         )
-    domain = build_domain(domains[0]) if domains else None
+    report = Report()
+    domain = build_domain(domains[0], report) if domains else None
     if domain is not None:
-        checked = tuple(build_problem(p, domain) for p in problems)
+        found = (report.attempt(build_problem, p, domain, report) for p in problems)
+        checked = tuple(p for p in found if p is not None)
     else:
         checked = tuple(_unchecked_problem(p) for p in problems)
+    report.raise_errors()
     return BtFile(path=path, domain=domain, problems=checked, problem_syntax=tuple(problems))
 
 
@@ -105,30 +109,52 @@ def collect(paths: Sequence[str]) -> Collection:
     A problem binds to the domain of its own file when that has the name it is written
     for, else to the first input domain of that name: two files may each define their
     own `blocksworld`, and a file of problems alone finds its domain in another file.
+    Mistakes in one file do not stop the others from being checked; all are raised
+    together at the end (`InputErrors`).
     """
     if not paths:
         raise InputError("no input files given")
     if sum(1 for p in paths if p == STDIO) > 1:
         raise InputError("standard input ('-') can be read only once")
-    files = [_read_nonempty(path) for path in paths]
-    built = [[build_domain(d) for d in domains] for domains, _ in files]
+    report = Report()
+    nothing: tuple[list[DomainSyntax], list[ProblemSyntax]] = ([], [])
+    files = [report.attempt(_read_nonempty, path) or nothing for path in paths]
+    built: list[list[Domain]] = []
+    broken: set[str] = set()
+    for domains, _ in files:
+        built.append([])
+        for d_syntax in domains:
+            built_domain = report.attempt(build_domain, d_syntax, report)
+            if built_domain is None:
+                broken.add(d_syntax.name.text)
+            else:
+                built[-1].append(built_domain)
     everywhere = [d for per_file in built for d in per_file]
     problems: list[Problem] = []
     owners: list[int] = []
     for (_, file_problems), own in zip(files, built, strict=True):
-        check_unique((p.name for p in file_problems), "problem")
+        check_unique((p.name for p in file_problems), "problem", report)
         for syntax in file_problems:
-            wanted = syntax.domain.text
-            domain = next((d for d in [*own, *everywhere] if d.name == wanted), None)
-            if domain is None:
-                raise syntax.domain.at.error(
-                    f"problem '{syntax.name.text}' is for domain '{wanted}', "
-                    "which none of the inputs defines",
-                    suggest(wanted, {d.name for d in everywhere}) or "give the domain file too",
-                )
-            problems.append(build_problem(syntax, domain))
-            owners.append(next(i for i, d in enumerate(everywhere) if d is domain))
+            domain = report.attempt(_domain_for, syntax, own + everywhere, broken)
+            problem = report.attempt(build_problem, syntax, domain, report) if domain else None
+            if domain is not None and problem is not None:
+                problems.append(problem)
+                owners.append(next(i for i, d in enumerate(everywhere) if d is domain))
+    report.raise_errors(paths)
     return Collection(tuple(everywhere), tuple(problems), tuple(owners), tuple(paths))
+
+
+def _domain_for(syntax: ProblemSyntax, domains: list[Domain], broken: set[str]) -> Domain | None:
+    """The domain a problem is written for; None when that domain had mistakes."""
+    wanted = syntax.domain.text
+    domain = next((d for d in domains if d.name == wanted), None)
+    if domain is None and wanted not in broken:
+        raise syntax.domain.at.error(
+            f"problem '{syntax.name.text}' is for domain '{wanted}', "
+            "which none of the inputs defines",
+            suggest(wanted, {d.name for d in domains}) or "give the domain file too",
+        )
+    return domain
 
 
 def _read_nonempty(path: str) -> tuple[list[DomainSyntax], list[ProblemSyntax]]:

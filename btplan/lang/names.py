@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from difflib import get_close_matches
 
+from btplan.lang.report import Report
 from btplan.lang.syntax import Name
 
 
@@ -14,13 +15,17 @@ def suggest(name: str, known: Iterable[str]) -> str | None:
     return f"did you mean '{near[0]}'?" if near else None
 
 
-def check_unique(names: Iterable[Name], what: str) -> None:
-    """Reject the second declaration of a name, pointing at both."""
+def check_unique(names: Iterable[Name], what: str, report: Report | None = None) -> None:
+    """Reject every later declaration of a name, pointing at the first."""
     seen: dict[str, Name] = {}
     for name in names:
         if name.text in seen:
             first = seen[name.text].at.span
-            raise name.at.error(
+            error = name.at.error(
                 f"{what} '{name.text}' is declared twice", f"first declared at {first}"
             )
-        seen[name.text] = name
+            if report is None:
+                raise error
+            report.add(error)
+        else:
+            seen[name.text] = name

@@ -1,4 +1,4 @@
-"""Check located syntax and build the frozen models, pointing at the first mistake.
+"""Check located syntax and build the frozen models, pointing at every mistake.
 
 Both readers (.bt and PDDL) end here, so both languages get the same checks and the
 same messages: unknown names with a "did you mean", wrong arity, wrong types, unbound
@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from btplan.lang.names import check_unique, suggest
+from btplan.lang.report import Report
 from btplan.lang.syntax import (
     ActionSyntax,
     DomainSyntax,
@@ -22,6 +23,7 @@ from btplan.lang.syntax import (
 from btplan.lang.types import TypeTable
 from btplan.model import (
     EQUALITY,
+    ROOT_TYPE,
     WILDCARD,
     ActionTemplate,
     Domain,
@@ -41,14 +43,26 @@ def a(noun: str) -> str:
 # --- domain ---------------------------------------------------------------------------
 
 
-def build_domain(syntax: DomainSyntax) -> Domain:
-    """Validate a domain and build its model (equalities in `pre` move to constraints)."""
-    types = TypeTable.from_syntax(syntax.types)
-    constants = _typed_names(syntax.constants, types, "constant")
+def build_domain(syntax: DomainSyntax, report: Report | None = None) -> Domain:
+    """Validate a domain and build its model (equalities in `pre` move to constraints).
+
+    Mistakes go to `report` when one is given (the caller raises them later); otherwise
+    they are raised together before returning.
+    """
+    own = report is None
+    report = report or Report()
+    types = TypeTable.from_syntax(syntax.types)  # everything else depends on the types
+    constants = _typed_names(syntax.constants, types, "constant", report)
     constant_types = {c.name: c.type for c in constants}
-    predicates = _predicates(syntax, types)
-    check_unique((a.name for a in syntax.actions), "action")
-    actions = tuple(_action(a, types, predicates, constant_types) for a in syntax.actions)
+    predicates = _predicates(syntax, types, report)
+    check_unique((a.name for a in syntax.actions), "action", report)
+    built = (
+        report.attempt(_action, a, types, predicates, constant_types, report)
+        for a in syntax.actions
+    )
+    actions = tuple(a for a in built if a is not None)
+    if own:
+        report.raise_errors()
     return Domain(
         name=syntax.name.text,
         requirements=tuple(r.text for r in syntax.requirements),
@@ -60,26 +74,29 @@ def build_domain(syntax: DomainSyntax) -> Domain:
 
 
 def _typed_names(
-    entries: tuple[TypedSyntax, ...], types: TypeTable, what: str
+    entries: tuple[TypedSyntax, ...], types: TypeTable, what: str, report: Report
 ) -> tuple[TypedName, ...]:
-    check_unique((e.name for e in entries), what)
-    out = []
-    for entry in entries:
-        type_name = types.resolve(entry.type)
-        out.append(TypedName(name=entry.name.text, type=type_name))
-    return tuple(out)
+    check_unique((e.name for e in entries), what, report)
+    return tuple(TypedName(name=e.name.text, type=_resolve(types, e.type, report)) for e in entries)
 
 
-def _predicates(syntax: DomainSyntax, types: TypeTable) -> dict[str, Predicate]:
-    check_unique((p.name for p in syntax.predicates), "predicate")
+def _resolve(types: TypeTable, name: Name | None, report: Report) -> str:
+    """The type's name; an unknown type is reported and read as the root, so that the
+    mistake is reported once rather than at every use."""
+    return report.attempt(types.resolve, name) or ROOT_TYPE
+
+
+def _predicates(syntax: DomainSyntax, types: TypeTable, report: Report) -> dict[str, Predicate]:
+    check_unique((p.name for p in syntax.predicates), "predicate", report)
     table: dict[str, Predicate] = {}
     for decl in syntax.predicates:
-        check_unique((p.name for p in decl.parameters), "parameter")
+        check_unique((p.name for p in decl.parameters), "parameter", report)
         for p in decl.parameters:
             if p.refined:
-                raise p.name.at.error("only action parameters can be 'refined'")
+                report.add(p.name.at.error("only action parameters can be 'refined'"))
         params = tuple(
-            Parameter(name=p.name.text, type=types.resolve(p.type)) for p in decl.parameters
+            Parameter(name=p.name.text, type=_resolve(types, p.type, report))
+            for p in decl.parameters
         )
         table[decl.name.text] = Predicate(name=decl.name.text, parameters=params)
     return table
@@ -90,8 +107,9 @@ def _action(
     types: TypeTable,
     predicates: Mapping[str, Predicate],
     constants: Mapping[str, str],
+    report: Report,
 ) -> ActionTemplate:
-    check_unique((p.name for p in syntax.parameters), "parameter")
+    check_unique((p.name for p in syntax.parameters), "parameter", report)
     params = []
     for p in syntax.parameters:
         if p.name.text in constants:
@@ -100,22 +118,27 @@ def _action(
             )
         if p.name.text == WILDCARD:
             raise p.name.at.error("'_' is the wildcard and cannot name a parameter")
-        params.append(Parameter(name=p.name.text, type=types.resolve(p.type), refined=p.refined))
+        type_name = _resolve(types, p.type, report)
+        params.append(Parameter(name=p.name.text, type=type_name, refined=p.refined))
     scope = {p.name: p.type for p in params}
     scope.update({c: t for c, t in constants.items() if c not in scope})
     context = _LiteralChecker(types, predicates, scope, syntax.name.text, set(constants))
 
-    where = [context.check(lit, "where") for lit in syntax.where]
+    where = _checked(context, syntax.where, "where", report)
     pre: list[Literal] = []
-    for lit in syntax.pre:
-        checked = context.check(lit, "pre")
+    for checked in _checked(context, syntax.pre, "pre", report):
         # equalities are static: they restrict bindings, they are not run-time conditions
         (where if checked.predicate == EQUALITY else pre).append(checked)
-    post = [context.check(lit, "post") for lit in syntax.post]
-    _check_contradictions(
-        syntax.post, "postconditions", "this action would make it both true and false"
+    post = _checked(context, syntax.post, "post", report)
+    report.attempt(
+        _check_contradictions,
+        syntax.post,
+        "postconditions",
+        "this action would make it both true and false",
     )
-    _check_contradictions(syntax.pre, "preconditions", "this action could never run")
+    report.attempt(
+        _check_contradictions, syntax.pre, "preconditions", "this action could never run"
+    )
     return ActionTemplate(
         name=syntax.name.text,
         parameters=tuple(params),
@@ -123,8 +146,16 @@ def _action(
         preconditions=tuple(pre),
         effects=tuple(post),
         cost=_cost(syntax.cost),
-        duration=_duration(syntax.duration),
+        duration=report.attempt(_duration, syntax.duration) or 1,
     )
+
+
+def _checked(
+    context: _LiteralChecker, literals: tuple[LiteralSyntax, ...], part: str, report: Report
+) -> list[Literal]:
+    """Each literal checked on its own, so that one mistake does not hide the next."""
+    found = (report.attempt(context.check, lit, part) for lit in literals)
+    return [lit for lit in found if lit is not None]
 
 
 def _cost(number: Number | None) -> float:
@@ -233,20 +264,26 @@ def check_predicate(lit: LiteralSyntax, predicates: Mapping[str, Predicate]) -> 
 # --- problem --------------------------------------------------------------------------
 
 
-def build_problem(syntax: ProblemSyntax, domain: Domain) -> Problem:
+def build_problem(syntax: ProblemSyntax, domain: Domain, report: Report | None = None) -> Problem:
     """Validate a problem against its (already valid) domain and build its model."""
+    own = report is None
+    report = report or Report()
     if syntax.domain.text != domain.name:
-        raise syntax.domain.at.error(
-            f"problem '{syntax.name.text}' is for domain '{syntax.domain.text}', "
-            f"but the domain given is '{domain.name}'"
+        report.add(
+            syntax.domain.at.error(
+                f"problem '{syntax.name.text}' is for domain '{syntax.domain.text}', "
+                f"but the domain given is '{domain.name}'"
+            )
         )
     types = TypeTable.from_domain(domain)
-    objects = _typed_names(syntax.objects, types, "object")
+    objects = _typed_names(syntax.objects, types, "object", report)
     constants = {c.name for c in domain.constants}
     for entry in syntax.objects:
         if entry.name.text in constants:
-            raise entry.name.at.error(
-                f"'{entry.name.text}' is already a constant of domain '{domain.name}'"
+            report.add(
+                entry.name.at.error(
+                    f"'{entry.name.text}' is already a constant of domain '{domain.name}'"
+                )
             )
     known = {c.name: c.type for c in domain.constants}
     known.update({o.name: o.type for o in objects})
@@ -254,18 +291,24 @@ def build_problem(syntax: ProblemSyntax, domain: Domain) -> Problem:
     init = []
     for lit in syntax.init:
         if not lit.positive:
-            raise lit.at.error(
-                "initial facts are positive", "leave out what is false: it is false by default"
+            report.add(
+                lit.at.error(
+                    "initial facts are positive",
+                    "leave out what is false: it is false by default",
+                )
             )
-        init.append(facts.check(lit, "initial fact"))
-    goal = [facts.check(lit, "goal") for lit in syntax.goal]
-    _check_contradictions(syntax.goal, "goal conditions", "no state satisfies both")
+        else:
+            init.append(report.attempt(facts.check, lit, "initial fact"))
+    goal = [report.attempt(facts.check, lit, "goal") for lit in syntax.goal]
+    report.attempt(_check_contradictions, syntax.goal, "goal conditions", "no state satisfies both")
+    if own:
+        report.raise_errors()
     return Problem(
         name=syntax.name.text,
         domain=syntax.domain.text,
         objects=objects,
-        init=tuple(dict.fromkeys(init)),
-        goal=tuple(goal),
+        init=tuple(dict.fromkeys(x for x in init if x is not None)),
+        goal=tuple(x for x in goal if x is not None),
     )
 
 

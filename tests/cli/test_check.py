@@ -74,3 +74,21 @@ def test_missing_file_is_bad_input(tmp_path: Path) -> None:
     result = runner.invoke(app, ["check", str(tmp_path / "nope.bt")])
     assert result.exit_code == 2
     assert "no such file" in result.stderr
+
+
+def test_every_error_is_printed_with_a_count(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.bt"
+    bad.write_text(
+        (DOMAINS / "pick_place.bt")
+        .read_text()
+        .replace("pre:   free(t)", "pre:   fre(t)")
+        .replace("on(cube, goal)\n", "on(cub, goal)\n")
+    )
+    result = runner.invoke(app, ["check", str(bad)])
+    assert result.exit_code == 2
+    errors = [line for line in result.stderr.splitlines() if line.startswith("error:")]
+    assert errors == [
+        f"error: {bad}:29:16: unknown predicate 'fre' (did you mean 'free'?)",
+        f"error: {bad}:60:12: unknown object 'cub' in a goal (did you mean 'cube'?)",
+    ]
+    assert result.stderr.splitlines()[-1] == "2 errors"

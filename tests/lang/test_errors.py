@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from btplan.errors import InputError
-from btplan.lang import parse_bt
+from btplan.lang import InputErrors, collect, parse_bt
 
 BASE = (Path(__file__).resolve().parents[2] / "domains" / "pick_place.bt").read_text()
 
@@ -247,3 +247,31 @@ def test_two_domains_in_one_file_are_refused() -> None:
         parse_bt("domain a { }\ndomain b { }\n", "two.bt")
     assert caught.value.message == "a file holds at most one domain"
     assert caught.value.span is not None and caught.value.span.line == 2
+
+
+def test_every_mistake_is_reported_in_one_pass() -> None:
+    text = (
+        BASE.replace("pre:   free(t)", "pre:   fre(t)")
+        .replace("post: holding(o), not hand_empty", "post: holding(x), not hand_empty")
+        .replace("holding(o: object)", "holding(o: objet)")
+        .replace("on(cube, goal)\n", "on(cub, goal)\n")
+    )
+    with pytest.raises(InputErrors) as caught:
+        parse_bt(text, "pp.bt")
+    found = [(e.span.line, e.message) for e in caught.value.errors if e.span]
+    assert found == [
+        (20, "unknown type 'objet'"),
+        (29, "unknown predicate 'fre'"),
+        (36, "unbound variable 'x' in a postcondition of Pick"),
+        (60, "unknown object 'cub' in a goal"),
+    ]
+    assert caught.value.message == "unknown type 'objet'"  # shown alone, it is the first
+
+
+def test_mistakes_in_several_files_are_all_reported(tmp_path: Path) -> None:
+    one, two = tmp_path / "one.bt", tmp_path / "two.bt"
+    one.write_text(BASE.replace("pre:   free(t)", "pre:   fre(t)"))
+    two.write_text(BASE.replace("duration: 3", "duration: 3 ]"))
+    with pytest.raises(InputErrors) as caught:
+        collect([str(one), str(two)])
+    assert [str(e.span) for e in caught.value.errors] == [f"{one}:29:16", f"{two}:31:21"]
