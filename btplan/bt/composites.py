@@ -6,7 +6,9 @@ every tick starts again at the first child.
   once. Fallback: a child's FAILURE ticks the next child; SUCCESS or RUNNING is returned
   at once. In both, a child that was RUNNING on an earlier tick and is not the child that
   decided this tick's outcome is halted, so that an action the tree no longer reaches
-  learns it was stopped (the cube slipping out of the gripper halts MoveTo).
+  learns it was stopped (the cube slipping out of the gripper halts MoveTo). Only the
+  children right of the deciding one can be in that state: every child left of it was
+  ticked on this tick and has already finished.
 
 With memory (memory=True; BT.CPP Sequence/Fallback): a RUNNING child is resumed on the
 next tick without re-ticking the children before it. The index is reset when the
@@ -60,7 +62,11 @@ class _Control(Composite):
 
 
 class Sequence(_Control):
-    """Ticks children left to right while they succeed (the paper's "->")."""
+    """Ticks children left to right while they succeed (the paper's "->").
+
+    Child SUCCESS: tick the next child (SUCCESS after the last). Child FAILURE or
+    RUNNING: return it, and halt the children to its right.
+    """
 
     __slots__ = ()
     kind = "Sequence"
@@ -68,7 +74,11 @@ class Sequence(_Control):
 
 
 class Fallback(_Control):
-    """Ticks children left to right while they fail (the paper's "?")."""
+    """Ticks children left to right while they fail (the paper's "?").
+
+    Child FAILURE: tick the next child (FAILURE after the last). Child SUCCESS or
+    RUNNING: return it, and halt the children to its right.
+    """
 
     __slots__ = ()
     kind = "Fallback"
