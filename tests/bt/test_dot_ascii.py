@@ -103,6 +103,13 @@ def test_ascii_colours_reached_nodes_and_dims_the_rest() -> None:
     assert "\x1b" not in dump_ascii(tree, statuses), "no escape codes unless asked"
 
 
+def test_ascii_marks_the_action_a_tick_halted() -> None:
+    tree, statuses, halted = slipped_figure7()
+    lines = dump_ascii(tree, statuses, halted=halted).splitlines()
+    assert [ln.strip("│├└─ ") for ln in lines if "HALTED" in ln] == [
+        "[MoveTo(goal, tau_goal)] HALTED"]
+
+
 def test_dump_knows_every_format_and_colours_by_last_status() -> None:
     tree, _ = ticked_figure7()
     assert set(DUMP_FORMATS) == {"xml", "dot", "json", "ascii"}

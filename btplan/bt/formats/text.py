@@ -8,7 +8,7 @@ is drawn, not when btplan.bt is imported.
 from __future__ import annotations
 
 import io
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from typing import TYPE_CHECKING
 
 from btplan.bt.formats.dot import node_label
@@ -23,7 +23,7 @@ if TYPE_CHECKING:
 STYLES: Mapping[Status, str] = {SUCCESS: "green", FAILURE: "red", RUNNING: "yellow"}
 
 
-def _line(node: Node, status: Status | None, traced: bool) -> str:
+def _line(node: Node, status: Status | None, traced: bool, halted: bool) -> str:
     from rich.markup import escape
 
     if isinstance(node, Action):
@@ -37,11 +37,17 @@ def _line(node: Node, status: Status | None, traced: bool) -> str:
     if status in STYLES:
         assert status is not None
         return f"{text} [{STYLES[status]}]{status.value}[/]"
+    if halted:
+        return f"{text} [bold magenta]HALTED[/]"
     return f"[dim]{text}[/]" if traced else text
 
 
-def ascii_tree(tree: BehaviorTree, statuses: Mapping[str, Status] | None = None) -> Tree:
-    """A rich renderable of the tree; with `statuses`, unreached nodes are dimmed."""
+def ascii_tree(tree: BehaviorTree, statuses: Mapping[str, Status] | None = None,
+               halted: Collection[str] = ()) -> Tree:
+    """A rich renderable of the tree, e.g. `ascii_tree(tree, trace.statuses(), trace.halted)`.
+
+    With `statuses` (by node id), unreached nodes are dimmed; `halted` ids are marked.
+    """
     from rich.tree import Tree
 
     nodes = tree.root.walk()
@@ -49,7 +55,8 @@ def ascii_tree(tree: BehaviorTree, statuses: Mapping[str, Status] | None = None)
     traced = statuses is not None
 
     def grow(node: Node, parent: Tree | None) -> Tree:
-        line = _line(node, (statuses or {}).get(ids[id(node)]), traced)
+        nid = ids[id(node)]
+        line = _line(node, (statuses or {}).get(nid), traced, nid in halted)
         branch = Tree(line, guide_style="dim") if parent is None else parent.add(line)
         for child in node.children:
             grow(child, branch)
@@ -59,14 +66,14 @@ def ascii_tree(tree: BehaviorTree, statuses: Mapping[str, Status] | None = None)
 
 
 def dump_ascii(tree: BehaviorTree, statuses: Mapping[str, Status] | None = None,
-               color: bool = False, width: int = 100) -> str:
+               color: bool = False, width: int = 100, halted: Collection[str] = ()) -> str:
     """The view as text; ANSI colours only when `color` is set (never in a pipe by default)."""
     from rich.console import Console
 
     buffer = io.StringIO()
     console = Console(file=buffer, width=width, force_terminal=color, no_color=not color,
                       color_system="standard" if color else None, highlight=False)
-    console.print(ascii_tree(tree, statuses))
+    console.print(ascii_tree(tree, statuses, halted))
     return buffer.getvalue()
 
 
