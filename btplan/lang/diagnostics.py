@@ -64,9 +64,9 @@ def _hint(token: Token, expected: list[str]) -> str | None:
     near = get_close_matches(text, sorted(keywords), n=1)
     if near:
         return f"did you mean '{near[0]}'?"
-    for closing in ("')'", "','"):
-        if closing in expected:
-            return f"is a {closing} missing before it?"
+    missing = [mark for mark in ("','", "')'") if mark in expected]
+    if missing:
+        return f"is a {' or '.join(missing)} missing before it?"
     return None
 
 

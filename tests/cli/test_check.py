@@ -92,3 +92,12 @@ def test_every_error_is_printed_with_a_count(tmp_path: Path) -> None:
         f"error: {bad}:60:12: unknown object 'cub' in a goal (did you mean 'cube'?)",
     ]
     assert result.stderr.splitlines()[-1] == "2 errors"
+
+
+def test_standard_input_in_either_language() -> None:
+    text = (DOMAINS / "pick_place.bt").read_text()
+    result = runner.invoke(app, ["check", "-"], input=text)
+    assert result.exit_code == 0 and "problem cube_on_goal for pick_place" in result.stdout
+    pddl = runner.invoke(app, ["generate", "logistics", "--packages", "2"]).stdout
+    result = runner.invoke(app, ["check", "-"], input=pddl)
+    assert result.exit_code == 0 and "problem logistics_2_s0 for logistics" in result.stdout

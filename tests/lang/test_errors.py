@@ -220,7 +220,7 @@ SYNTAX = {
         "holding(o: object",
         (21, 9),
         "unexpected 'hand_empty'; expected ')', ',' or 'refined'",
-        "is a ')' missing before it?",
+        "is a ',' or ')' missing before it?",
     ),
 }
 
