@@ -35,7 +35,7 @@ from btplan.model import (
 )
 
 
-def a(noun: str) -> str:
+def article(noun: str) -> str:
     """`a block`, `an object`: messages read as sentences."""
     return f"{'an' if noun[:1].lower() in 'aeiou' else 'a'} {noun}"
 
@@ -223,7 +223,8 @@ class _LiteralChecker:
             arg_type = self._arg_type(arg, lit, part)
             if not self.types.related(arg_type, param.type):
                 raise arg.at.error(
-                    f"'{arg.text}' is {a(arg_type)}, but {predicate.name} expects {a(param.type)} here"
+                    f"'{arg.text}' is {article(arg_type)}, "
+                    f"but {predicate.name} expects {article(param.type)} here"
                 )
         return lit.literal()
 
@@ -287,7 +288,9 @@ def build_problem(syntax: ProblemSyntax, domain: Domain, report: Report | None =
             )
     known = {c.name: c.type for c in domain.constants}
     known.update({o.name: o.type for o in objects})
-    facts = _FactChecker(types, domain.predicate_map, known)
+    # objects of an unknown type were reported once; their facts are not checked for type
+    unknown = {o.name.text for o in syntax.objects if o.type and o.type.text not in types.parents}
+    facts = _FactChecker(types, domain.predicate_map, known, unknown)
     init = []
     for lit in syntax.init:
         if not lit.positive:
@@ -316,25 +319,31 @@ class _FactChecker:
     """Checks ground literals (initial facts, goals) against objects and constants."""
 
     def __init__(
-        self, types: TypeTable, predicates: Mapping[str, Predicate], known: Mapping[str, str]
+        self,
+        types: TypeTable,
+        predicates: Mapping[str, Predicate],
+        known: Mapping[str, str],
+        untyped: set[str],
     ) -> None:
         self.types = types
         self.predicates = predicates
         self.known = known
+        self.untyped = untyped
 
     def check(self, lit: LiteralSyntax, what: str) -> Literal:
         if lit.is_equality:
-            raise lit.at.error(f"an equality cannot be {a(what)}")
+            raise lit.at.error(f"an equality cannot be {article(what)}")
         predicate = check_predicate(lit, self.predicates)
         for arg, param in zip(lit.args, predicate.parameters):
             if arg.text not in self.known:
                 raise arg.at.error(
-                    f"unknown object '{arg.text}' in {a(what)}",
+                    f"unknown object '{arg.text}' in {article(what)}",
                     suggest(arg.text, self.known) or "declare it under 'objects'",
                 )
             arg_type = self.known[arg.text]
-            if not self.types.is_subtype(arg_type, param.type):
+            if arg.text not in self.untyped and not self.types.is_subtype(arg_type, param.type):
                 raise arg.at.error(
-                    f"'{arg.text}' is {a(arg_type)}, but {predicate.name} expects {a(param.type)} here"
+                    f"'{arg.text}' is {article(arg_type)}, "
+                    f"but {predicate.name} expects {article(param.type)} here"
                 )
         return lit.literal()

@@ -275,3 +275,12 @@ def test_mistakes_in_several_files_are_all_reported(tmp_path: Path) -> None:
     with pytest.raises(InputErrors) as caught:
         collect([str(one), str(two)])
     assert [str(e.span) for e in caught.value.errors] == [f"{one}:29:16", f"{two}:31:21"]
+
+
+def test_an_unknown_type_is_reported_once() -> None:
+    text = BASE.replace("cube : object", "cube : objct")
+    with pytest.raises(InputError) as caught:
+        parse_bt(text, "pp.bt")
+    assert not isinstance(caught.value, InputErrors)
+    assert caught.value.message == "unknown type 'objct'"
+    assert caught.value.hint == "did you mean 'object'?"
