@@ -43,15 +43,16 @@ def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = 
     from btplan.worlds.pybullet.scene import load_scene
     from btplan.worlds.pybullet.world import PyBulletWorld
 
+    recorder = Recorder(record) if record is not None else None  # refuse bad paths first
     path = Path(scene) if scene is not None else default_scene(task)
     if scene is None and not path.exists():
         raise WorldError(f"no scene for domain {task.domain.name!r}: pass one with --scenario")
     loaded = load_scene(path)
     world = PyBulletWorld(task, loaded, seed=seed, gui=gui, verbose=verbose)
     world.agents = scene_agents(loaded.events, str(path))
-    if record is not None:
-        world.recorder = Recorder(record)
-        world.on_frame = world.recorder
+    if recorder is not None:
+        world.recorder = recorder
+        world.on_frame = recorder
     return world
 
 

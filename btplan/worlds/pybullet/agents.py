@@ -19,7 +19,7 @@ if TYPE_CHECKING:
     from btplan.worlds.pybullet.world import PyBulletWorld
 
 
-def parse_literal(text: str, where: Span) -> tuple[bool, str, tuple[str, ...]]:
+def parse_literal(text: str, where: Span | None) -> tuple[bool, str, tuple[str, ...]]:
     """`holding(green)` or `not near(goal)` as (positive, predicate, args)."""
     body = text.strip()
     positive = not body.startswith("not ")

@@ -192,13 +192,17 @@ class Sim:
         x0, x1, y0, y1 = self.scene.bounds
         cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
         span = max(x1 - x0, y1 - y0)
-        view = p.computeViewMatrix([cx, cy - 0.55 * span, 0.8 * span], [cx, cy, 0.0], [0, 0, 1],
-                                   physicsClientId=self.client)
-        proj = p.computeProjectionMatrixFOV(55, width / height, 0.1, 4 * span,
+        for probe in (self.probe, self.cube_probe):  # collision probes would show as grey shapes
+            p.resetBasePositionAndOrientation(probe, [0, 0, PARKED_Z], [0, 0, 0, 1],
+                                              physicsClientId=self.client)
+        view = p.computeViewMatrix([cx, cy - 0.35 * span, 0.55 * span], [cx, cy - 0.02 * span, 0.0],
+                                   [0, 0, 1], physicsClientId=self.client)
+        proj = p.computeProjectionMatrixFOV(62, width / height, 0.1, 4 * span,
                                             physicsClientId=self.client)
         _, _, rgba, _, _ = p.getCameraImage(width, height, view, proj,
                                             renderer=p.ER_TINY_RENDERER,
                                             physicsClientId=self.client)
-        pixels = bytes(bytearray(int(v) for v in rgba)) if not isinstance(rgba, bytes | bytearray) \
-            else bytes(rgba)
+        # A numpy array when pybullet was built with numpy, a flat tuple of ints otherwise.
+        pixels = rgba.astype("uint8").tobytes() if hasattr(rgba, "astype") \
+            else bytes(bytearray(int(v) for v in rgba))
         return width, height, pixels

@@ -41,11 +41,11 @@ class PyBulletWorld:
         motion.set_log_level(verbose)
         motion.seed_rng(seed + 1)  # OMPL refuses a zero seed
         self.task, self.scene = task, scene
-        self.sim = Sim(scene, gui)
         self.cube_names = tuple(sorted(c.name for c in scene.cubes))
         self.on_floor: dict[str, Point | None] = {c.name: c.at for c in scene.cubes}
         self.held: str | None = None
         self.clearing_now: str | None = None  # the cube a running ClearPath carries
+        self.handled = 0  # cubes the robot grasped or put down so far
         self.base: Pose2 = scene.start
         self.trajectories: dict[str, Trajectory] = {}
         self.poses: dict[str, Point] = {}
@@ -66,6 +66,7 @@ class PyBulletWorld:
         self._no_detour: set[tuple[object, ...]] = set()
         self.waypoints_per_tick = max(1, round(scene.speed * scene.tick_seconds / STEP))
         self._check_objects()
+        self.sim = Sim(scene, gui)  # after the checks: a refused scene leaves no connection open
         scene_names = {*self.cube_names, *(r.name for r in scene.regions)}
         # Initial facts about things the scene does not contain (the problem's stand-ins
         # for trajectories and poses) cannot be measured; they are kept as given.
@@ -121,6 +122,7 @@ class PyBulletWorld:
         self.sim.set_robot(pose, self.held)
 
     def grasp(self, cube: str) -> None:
+        self.handled += 1
         self.held = cube
         self.on_floor[cube] = None
         self.sim.set_robot(self.base, cube)
@@ -130,6 +132,7 @@ class PyBulletWorld:
         cube = self.held
         if cube is None:
             return
+        self.handled += 1
         self.held = None
         self.put(cube, spot)
 
@@ -231,8 +234,12 @@ class PyBulletWorld:
         traj.plans += 1
 
     def layout(self) -> tuple[object, ...]:
-        """Where the cubes are and which one is held: a path planned among others is stale."""
-        return (self.held, *((c, self.on_floor[c]) for c in self.cube_names))
+        """What the robot itself changed: a path planned before it moved a cube is stale.
+
+        A cube moved by someone else is deliberately not part of it: the stored path is
+        checked against it, so an obstacle that appears on the way blocks the path.
+        """
+        return (self.held, self.handled)
 
     def _plan(self, target: str, goal: Pose2) -> tuple[Pose2, ...]:
         start = self.base

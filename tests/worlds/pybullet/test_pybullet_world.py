@@ -120,3 +120,39 @@ def test_pick_fails_out_of_reach_and_actions_are_logged_grounded(room: PyBulletW
 
     assert room.start(("Pick", ("green",))) is FAILURE
     assert [a.ipc() for a in room.failed] == ["(pick green)"]
+
+
+def test_record_writes_a_gif_with_the_current_action_on_each_frame(tmp_path: Path) -> None:
+    from PIL import Image
+
+    movie = tmp_path / "run.gif"
+    world = open_world(TASK, write_scene(tmp_path), seed=3, record=str(movie))
+    try:
+        tree = BehaviorTree(figure7_tree(trajectory_to(world, "green"), trajectory_to(world, "goal")))
+        for _ in range(12):
+            tree.tick(world)
+    finally:
+        world.close()
+    with Image.open(movie) as image:
+        assert image.format == "GIF" and image.size == (480, 300)
+        assert image.n_frames == 4  # one frame every third action tick
+        first = image.convert("RGB")
+        # The label bar is drawn on top: black with white text.
+        assert first.getpixel((300, 2)) == (0, 0, 0)
+        assert any(first.getpixel((x, 9)) != (0, 0, 0) for x in range(6, 120))
+
+
+def test_record_refuses_formats_it_cannot_write(tmp_path: Path) -> None:
+    from btplan.errors import WorldError
+
+    with pytest.raises(WorldError, match="only .gif"):
+        open_world(TASK, write_scene(tmp_path), record=str(tmp_path / "run.avi"))
+
+
+def test_a_scene_without_a_location_of_the_problem_is_refused(tmp_path: Path) -> None:
+    from btplan.errors import WorldError
+
+    text = write_scene(tmp_path)
+    Path(text).write_text(Path(text).read_text().replace('name = "goal"', 'name = "target"'))
+    with pytest.raises(WorldError, match="'goal' is a location in the problem but not in the scene"):
+        open_world(TASK, text)
