@@ -14,7 +14,14 @@ from btplan.bt.leaves import Action, Condition, Leaf
 from btplan.bt.node import Composite, Node
 from btplan.bt.parallel import Parallel
 from btplan.bt.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
-from btplan.bt.trace import NodeTick, TickRecorder, TickTrace, node_ids, traces_to_jsonl
+from btplan.bt.trace import (
+    NodeTick,
+    TickRecorder,
+    TickTrace,
+    node_ids,
+    traces_to_jsonl,
+    write_jsonl,
+)
 from btplan.bt.tree import BehaviorTree
 from btplan.bt.world import LeafKey, World
 
@@ -23,5 +30,5 @@ __all__ = [
     "Condition", "Decorator", "Fallback", "ForceFailure", "ForceSuccess", "Inverter", "Leaf",
     "LeafContractError", "LeafKey", "Node", "NodeTick", "Parallel", "Retry", "Sequence",
     "Status", "StrictWorld", "TickRecorder", "TickTrace", "Timeout", "World", "node_ids",
-    "traces_to_jsonl",
+    "traces_to_jsonl", "write_jsonl",
 ]

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 from btplan.bt.node import Node
 from btplan.bt.status import RUNNING, Status
 from btplan.bt.world import LeafKey, World
+from btplan.io import write_atomic
 
 if TYPE_CHECKING:
     from btplan.bt.tree import BehaviorTree
@@ -74,6 +75,11 @@ class TickTrace:
 def traces_to_jsonl(traces: Iterable[TickTrace]) -> str:
     """One JSON object per line and per tick, for `--trace FILE.jsonl`."""
     return "".join(t.to_json() + "\n" for t in traces)
+
+
+def write_jsonl(path: str, traces: Iterable[TickTrace]) -> None:
+    """Write a JSON-lines trace file all at once (`-` is standard output)."""
+    write_atomic(path, traces_to_jsonl(traces))
 
 
 class _Channel:

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import io
 import json
+from pathlib import Path
 
 from bt_stubs import ScriptWorld, example1_world, figure7_tree
 
 from btplan.bt import FAILURE, RUNNING, SUCCESS, Action, BehaviorTree, Condition, Sequence
 from btplan.bt.composites import Sequence as PlainSequence
-from btplan.bt.trace import TickRecorder, node_ids, traces_to_jsonl
+from btplan.bt.trace import TickRecorder, node_ids, traces_to_jsonl, write_jsonl
 
 
 def test_first_tick_of_figure7_reaches_nodes_depth_first_and_starts_moveto() -> None:
@@ -91,3 +92,16 @@ def test_jsonl_has_one_parsable_line_per_tick_and_a_sink_streams_them() -> None:
     assert last["tick"] == 7 and last["status"] == "SUCCESS"
     assert last["nodes"][0] == {"id": "n0", "kind": "Fallback", "name": "", "status": "SUCCESS"}
     assert traces_to_jsonl(recorder.traces).splitlines() == lines[-2:]
+
+
+def test_a_trace_file_holds_one_json_object_per_tick(tmp_path: Path) -> None:
+    tree, world = figure7_tree(), example1_world()
+    recorder = TickRecorder()
+    recorder.attach(tree)
+    for _ in range(3):
+        tree.tick(world)
+    path = tmp_path / "trace.jsonl"
+    write_jsonl(str(path), recorder.traces)
+    rows = [json.loads(line) for line in path.read_text(encoding="utf-8").splitlines()]
+    assert [r["tick"] for r in rows] == [1, 2, 3]
+    assert rows[0]["started"] == ["n10"] and rows[2]["started"] == ["n12"]  # Pick
