@@ -58,6 +58,13 @@ def test_export_import_export_is_identical(make) -> None:  # type: ignore[no-unt
     assert dump_json(again) == dump_json(tree)
 
 
+def test_names_and_arguments_with_markup_characters_survive_the_round_trip() -> None:
+    tree = BehaviorTree(Sequence([Condition("at", ('a&b "c"',), ("x",), name="<at> & 'so'"),
+                                  Action("Go", ("<x>",), ("to",))], name='say "hi"'))
+    text = dump_xml(tree)
+    assert dump_json(load_xml(text)) == dump_json(tree)
+
+
 def test_ports_in_the_export_match_the_tree_nodes_model() -> None:
     _, keys = port_free_copy(dump_xml(figure7_tree()))
     assert sorted(set(keys.values()))[:3] == [
