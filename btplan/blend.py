@@ -108,7 +108,7 @@ class BlendedLoop:
             else:
                 self._stall(before)
         after = self.world.facts()
-        if after != before and status is not SUCCESS:
+        if after != before:
             key = (after, len(self.expansions))
             if key in self._seen:
                 raise NoProgressError(self._loop_reason())
@@ -234,6 +234,10 @@ class BlendedLoop:
             f"(after {len(self.expansions)} expansions){tail}"
         )
 
+    def goal_holds(self) -> bool:
+        state = self.world.facts()
+        return all(g.holds(state) for g in self.task.goal_literals)
+
     # --- many ticks --------------------------------------------------------------------
 
     def run(
@@ -242,7 +246,12 @@ class BlendedLoop:
         before_tick: Callable[[int], None] | None = None,
         on_tick: Callable[[TickReport], None] | None = None,
     ) -> RunResult:
-        """Tick until the tree succeeds or `max_ticks` ticks were spent."""
+        """Tick until the tree succeeds with the goal true, or `max_ticks` ticks were spent.
+
+        The goal is checked in the world after the tick: when actions finish within
+        the tick they start in, later work may undo a goal checked earlier in the
+        same tick, and the next tick must then put it right.
+        """
         start = len(self.expansions)
         for i in range(max_ticks):
             if before_tick is not None:
@@ -250,7 +259,7 @@ class BlendedLoop:
             report = self.tick()
             if on_tick is not None:
                 on_tick(report)
-            if report.status is SUCCESS:
+            if report.status is SUCCESS and self.goal_holds():
                 return RunResult(True, i + 1, self.expansions[start:], self.tree, "goal reached")
         return RunResult(
             False, max_ticks, self.expansions[start:], self.tree,
