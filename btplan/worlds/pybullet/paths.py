@@ -15,7 +15,8 @@ from dataclasses import dataclass, field
 from btplan.worlds.pybullet.geometry import distance
 from btplan.worlds.pybullet.motion import Pose2
 
-STALE_START = 0.15   # metres the robot may be away from a path's start before it is re-planned
+DRIVE_FROM = 0.05    # metres the robot may be off a path's start when it starts driving it
+CHECK_FROM = 0.5     # the same when only checking the path: the way ahead barely changes
 STALE_GOAL = 0.05    # metres the target may have moved before the path is re-planned
 
 
@@ -37,10 +38,11 @@ class Trajectory:
     plans: int = 0
     layout: object = None
 
-    def stale(self, robot: Pose2, goal: Pose2 | None, layout: object) -> bool:
+    def stale(self, robot: Pose2, goal: Pose2 | None, layout: object,
+              slack: float = CHECK_FROM) -> bool:
         """Planned from elsewhere, towards a target that moved, or among other cubes."""
         if self.executing:
             return False
         if not self.path or goal is None or self.goal is None or layout != self.layout:
             return True
-        return distance(self.path[0], robot) > STALE_START or distance(self.goal, goal) > STALE_GOAL
+        return distance(self.path[0], robot) > slack or distance(self.goal, goal) > STALE_GOAL

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Protocol
 
 from btplan.bt.status import FAILURE, RUNNING, SUCCESS, Status
 from btplan.worlds.pybullet.geometry import facing
+from btplan.worlds.pybullet.paths import DRIVE_FROM
 
 if TYPE_CHECKING:
     from btplan.worlds.pybullet.world import PyBulletWorld
@@ -35,7 +36,7 @@ class MoveTo:
         self.target, self.name = target, trajectory
         self.index = 0
         self.retargets = 0
-        world.prepare(trajectory)
+        world.prepare(trajectory, DRIVE_FROM)
         self.traj = world.trajectories[trajectory]
         self.traj.executing = True
 
@@ -55,7 +56,7 @@ class MoveTo:
         if self.retargets > MAX_RETARGETS:
             return self.stop(FAILURE)
         self.traj.executing = False
-        world.prepare(self.name)
+        world.prepare(self.name, DRIVE_FROM)
         self.traj.executing = True
         self.index = 0
         return RUNNING

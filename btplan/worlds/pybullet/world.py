@@ -20,7 +20,7 @@ from btplan.worlds.pybullet import motion
 from btplan.worlds.pybullet.agents import SceneAgents
 from btplan.worlds.pybullet.geometry import clearance, distance, facing, grid, ring
 from btplan.worlds.pybullet.motion import Pose2
-from btplan.worlds.pybullet.paths import Trajectory
+from btplan.worlds.pybullet.paths import CHECK_FROM, Trajectory
 from btplan.worlds.pybullet.record import Recorder
 from btplan.worlds.pybullet.scene import Point, Scene
 from btplan.worlds.pybullet.sim import Sim
@@ -221,13 +221,18 @@ class PyBulletWorld:
         best = min(spots, key=lambda q: (round(distance(q, self.base), 3), q))
         return facing(best, target)
 
-    def prepare(self, name: str) -> None:
-        """Plan the trajectory again if it was planned from elsewhere or its target moved."""
+    def prepare(self, name: str, slack: float = CHECK_FROM) -> None:
+        """Plan the trajectory again if it was planned from elsewhere or its target moved.
+
+        `slack` is how far from the path's start the robot may be: small when the robot is
+        about to drive the path, larger when the path is only checked, which saves most
+        re-planning while the robot drives elsewhere.
+        """
         traj = self.trajectories[name]
         if traj.target in self.on_floor and not self.present(traj.target):
             return  # a cube taken out of the scene: keep the old path, nothing to reach
         goal = self.approach(traj.target) or self.approach(traj.target, avoid_cubes=False)
-        if not traj.stale(self.base, goal, self.layout()) or goal is None:
+        if not traj.stale(self.base, goal, self.layout(), slack) or goal is None:
             return
         traj.path, traj.goal = self._plan(traj.target, goal), goal
         traj.layout = self.layout()
@@ -454,6 +459,21 @@ class PyBulletWorld:
         return name
 
     # --- lifecycle -----------------------------------------------------------------------
+
+    def stats(self) -> dict[str, float]:
+        """Simulated time and OMPL effort so far, for the run's closing note."""
+        moves = sum(1 for a in self.started if a.name in ("MoveTo", "ClearPath"))
+        total = sum(self.plan_seconds)
+        return {
+            "sim_seconds": round(self.sim_seconds, 3),
+            "action_ticks": self.action_ticks,
+            "ompl_solves": len(self.plan_seconds),
+            "ompl_seconds_total": round(total, 4),
+            "ompl_ms_per_solve": round(1000 * total / max(1, len(self.plan_seconds)), 2),
+            "ompl_ms_max": round(1000 * max(self.plan_seconds, default=0.0), 2),
+            "moves_started": moves,
+            "ompl_ms_per_move": round(1000 * total / max(1, moves), 2),
+        }
 
     def scene_agents(self) -> list[SceneAgents]:
         """The scene's scripted external events, as one agent acting before each tick."""
