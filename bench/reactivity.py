@@ -8,7 +8,7 @@ the same symbolic world, one tick at a time, with the same seeded agents acting
 before every tick, so the k-th run of both sees the same disturbance stream.
 
 Run:  python bench/reactivity.py [--seeds 30] [--rates 0,0.02,0.05,0.1,0.2]
-Writes docs/reactivity.md (the table) and docs/reactivity.png (the plot).
+Writes the table into docs/reactivity.md (between its markers) and docs/reactivity.png.
 """
 
 from __future__ import annotations
@@ -318,6 +318,8 @@ def plot(rows: Sequence[Row], path: Path) -> None:
                                   ("replan-pyperplan", "x-.")):
                 pts = [r for r in rows if r.scenario == name and r.method == method]
                 ax.plot([r.rate for r in pts], [getattr(r, field) for r in pts], style, label=method)
+            if field == "success":
+                ax.set_ylim(-0.05, 1.05)
             ax.set_title(f"{name}: {label}", fontsize=9)
             ax.set_xlabel("disturbance rate per tick and agent", fontsize=8)
             ax.grid(alpha=0.3)
@@ -325,6 +327,22 @@ def plot(rows: Sequence[Row], path: Path) -> None:
                 ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
+
+
+START, END = "<!-- table: bench/reactivity.py -->", "<!-- end of table -->"
+
+
+def fill_table(page: Path, text: str, args: argparse.Namespace) -> None:
+    """Put the table between the markers of the results page (or into a page of its own)."""
+    header = (f"Seeds 0..{args.seeds - 1}, rates {args.rates}, at most {args.max_ticks} ticks; "
+              "planning ms and ticks are means (ticks over the runs that reached the goal).\n\n")
+    block = f"{START}\n{header}{text}{END}"
+    old = page.read_text(encoding="utf-8") if page.exists() else f"# Reactivity\n\n{START}\n{END}\n"
+    if START not in old or END not in old:
+        old += f"\n{START}\n{END}\n"
+    before, rest = old.split(START, 1)
+    after = rest.split(END, 1)[1]
+    page.write_text(before + block + after, encoding="utf-8")
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -339,7 +357,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     text = table(rows)
     sys.stdout.write(text)
     out = Path(args.out)
-    (out / "reactivity-table.md").write_text(text, encoding="utf-8")
+    fill_table(out / "reactivity.md", text, args)
     plot(rows, out / "reactivity.png")
     return 0
 
