@@ -19,7 +19,7 @@ from btplan.bt.trace import TickRecorder
 from btplan.errors import PlanningError
 from btplan.model import Atom, GroundAction, Task
 from btplan.trace import ExpansionNote, RunSummary, TickRecord, summarize
-from btplan.worlds.agents import Agent, act_all, agents_from_specs
+from btplan.worlds.agents import Agent, act_all, agents_from_specs, check_world
 from btplan.worlds.disturb import DisturbSpec, check_specs, parse_spec
 from btplan.worlds.symbolic import SymbolicWorld
 
@@ -176,6 +176,8 @@ def run(
     """
     specs = [parse_spec(s) if isinstance(s, str) else s for s in disturb]
     check_specs(specs, task)
+    if world is not None:
+        check_world(specs, world, type(world).__name__)
     everyone = [*agents_from_specs(specs, seed), *agents]
     return run_task(task, world=world, agents=everyone, seed=seed, max_ticks=max_ticks,
                     view=view, rate=rate, failure_probability=failure_probability)

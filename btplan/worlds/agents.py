@@ -16,6 +16,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
+from btplan.errors import InputError
 from btplan.model import Atom, GroundAction
 from btplan.worlds.disturb import DisturbSpec, Target
 
@@ -175,6 +176,30 @@ class SpecAgent:
 def _changes(added: Iterable[Atom], removed: Iterable[Atom]) -> str:
     parts = [f"+{a}" for a in added] + [f"-{a}" for a in removed]
     return " ".join(parts) if parts else "no change"
+
+
+NEEDS = {
+    "undo": ("executed", "facts", "set_fact", "clear_fact"),
+    "help": ("started", "executed", "halted", "failed", "facts", "apply_action", "ground"),
+    "set": ("facts", "set_fact"),
+    "clear": ("facts", "clear_fact"),
+    "fail": ("fail_next",),
+}
+"""What a world must offer for each kind of spec agent."""
+
+
+def check_world(specs: Sequence[DisturbSpec], world: Any, world_name: str) -> None:
+    """Refuse specs the world cannot carry out, before the run rather than in the middle.
+
+    A simulator changes its state through its own scene events, not by setting facts,
+    so symbolic specs may not apply there.
+    """
+    for spec in specs:
+        missing = [m for m in NEEDS[spec.kind] if not hasattr(world, m)]
+        if missing:
+            raise InputError(f"the world {world_name} cannot do '{spec.kind}' disturbances "
+                             f"(it has no {missing[0]})", spec.span,
+                             "use its scene's events instead", spec.source_line)
 
 
 def agents_from_specs(specs: Sequence[DisturbSpec], seed: int = 0) -> list[Agent]:

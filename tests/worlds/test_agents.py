@@ -2,8 +2,17 @@
 
 from __future__ import annotations
 
+import pytest
+
+from btplan.errors import InputError, Span
 from btplan.model import ActionTemplate, Atom, GroundAction, Literal, Parameter, instantiate
-from btplan.worlds.agents import SpecAgent, act_all, agents_from_specs, running_action
+from btplan.worlds.agents import (
+    SpecAgent,
+    act_all,
+    agents_from_specs,
+    check_world,
+    running_action,
+)
 from btplan.worlds.disturb import parse_spec
 
 PICK = ActionTemplate(
@@ -102,3 +111,17 @@ def test_probabilistic_agents_repeat_with_the_same_seed() -> None:
     assert firing(4) == firing(4)
     assert firing(4) != firing(5)
     assert 30 < len(firing(4)) < 90
+
+
+def test_specs_a_world_cannot_carry_out_are_refused_up_front() -> None:
+    class Rigid:
+        executed = ()
+
+        def facts(self) -> frozenset[Atom]:
+            return frozenset()
+
+    check_world([parse_spec("fail:Pick@1")], LogWorld(set()), "LogWorld")
+    with pytest.raises(InputError) as caught:
+        check_world([parse_spec("undo@1"), parse_spec("set:hand_empty@2")], Rigid(), "Rigid")
+    assert "the world Rigid cannot do 'undo' disturbances (it has no set_fact)" in str(caught.value)
+    assert caught.value.span == Span("--disturb", 1, 1)
