@@ -27,7 +27,7 @@ from btplan.lang.syntax import (
     TypedSyntax,
     Where,
 )
-from btplan.model import EQUALITY
+from btplan.model import EQUALITY, ROOT_TYPE
 
 SUPPORTED = (":strips", ":typing", ":negative-preconditions", ":equality")
 
@@ -222,37 +222,43 @@ def _domain(define: Group) -> DomainSyntax:
     name = _expect_word(
         header.items[1] if len(header.items) > 1 else None, header, None, "the domain's name"
     )
-    parts: dict[str, list[object]] = {
-        "requirements": [],
-        "types": [],
-        "constants": [],
-        "predicates": [],
-        "actions": [],
-    }
+    requirements: list[Name] = []
+    types: list[TypedSyntax] = []
+    constants: list[TypedSyntax] = []
+    predicates: list[PredicateSyntax] = []
     action_groups: list[Group] = []
     for key, group in _sections(define):
         if key == ":requirements":
-            parts["requirements"].extend(_requirements(group))
+            requirements.extend(_requirements(group))
         elif key == ":types":
-            parts["types"].extend(_typed(group.items[1:]))
+            types.extend(_typed(group.items[1:]))
         elif key == ":constants":
-            parts["constants"].extend(_typed(group.items[1:]))
+            constants.extend(_typed(group.items[1:]))
         elif key == ":predicates":
-            parts["predicates"].extend(_predicate(g, group) for g in group.items[1:])
+            predicates.extend(_predicate(g, group) for g in group.items[1:])
         elif key == ":action":
             action_groups.append(group)
         else:
             raise group.items[0].at.error(f"section '{key}' is not supported", FRAGMENT)
-    constants = {c.name.text for c in parts["constants"]}  # type: ignore[attr-defined]
-    parts["actions"] = [_action(g, constants) for g in action_groups]
+    constant_names = {c.name.text for c in constants}
     return DomainSyntax(
         _name(name),
-        requirements=tuple(parts["requirements"]),  # type: ignore[arg-type]
-        types=tuple(parts["types"]),  # type: ignore[arg-type]
-        constants=tuple(parts["constants"]),  # type: ignore[arg-type]
-        predicates=tuple(parts["predicates"]),  # type: ignore[arg-type]
-        actions=tuple(parts["actions"]),  # type: ignore[arg-type]
+        requirements=tuple(requirements),
+        types=(*types, *_implicit_types(types)),
+        constants=tuple(constants),
+        predicates=tuple(predicates),
+        actions=tuple(_action(g, constant_names) for g in action_groups),
     )
+
+
+def _implicit_types(declared: list[TypedSyntax]) -> list[TypedSyntax]:
+    """Parents named only after '-' (`truck car - vehicle`): PDDL declares them too."""
+    names = {t.name.text for t in declared} | {ROOT_TYPE}
+    implicit: dict[str, TypedSyntax] = {}
+    for entry in declared:
+        if entry.type is not None and entry.type.text not in names:
+            implicit.setdefault(entry.type.text, TypedSyntax(entry.type, None))
+    return list(implicit.values())
 
 
 def _predicate(item: Item, section: Group) -> PredicateSyntax:

@@ -123,3 +123,39 @@ def test_an_unknown_variable_keeps_its_question_mark(tmp_path: Path) -> None:
     with pytest.raises(InputError) as caught:
         load(write(tmp_path, domain))
     assert caught.value.message == "unbound variable '?z' in a postcondition of stack"
+
+
+UNTYPED = """;;; the classic untyped 4-operator blocksworld, upper case as often found
+(define (domain BLOCKS)
+  (:requirements :strips)
+  (:predicates (on ?x ?y) (ontable ?x) (clear ?x) (handempty) (holding ?x))
+  (:action pick-up
+     :parameters (?x)
+     :precondition (and (clear ?x) (ontable ?x) (handempty))
+     :effect (and (not (ontable ?x)) (not (clear ?x)) (not (handempty)) (holding ?x))))
+(define (problem BLOCKS-4-0) (:domain BLOCKS) (:objects D B A C)
+  (:INIT (CLEAR C) (CLEAR A) (ONTABLE C) (ONTABLE A) (HANDEMPTY))
+  (:goal (AND (ON D C) (ON C B))))
+"""
+
+
+def test_untyped_domain_and_problem_in_one_file(tmp_path: Path) -> None:
+    (tmp_path / "both.pddl").write_text(UNTYPED)
+    task = load([str(tmp_path / "both.pddl")])
+    assert task.problem.name == "blocks-4-0"
+    assert task.objects_of("object") == ("a", "b", "c", "d")
+    assert [str(g) for g in task.goal_literals] == ["on(d, c)", "on(c, b)"]
+
+
+def test_parent_types_named_only_after_a_dash_are_declared(tmp_path: Path) -> None:
+    (tmp_path / "d.pddl").write_text(
+        "(define (domain t) (:requirements :typing)"
+        " (:types truck car - vehicle) (:predicates (at ?v - vehicle)))"
+    )
+    domain = collect([str(tmp_path / "d.pddl")]).domains[0]
+    assert domain.type_parents == {
+        "object": None,
+        "truck": "vehicle",
+        "car": "vehicle",
+        "vehicle": "object",
+    }
