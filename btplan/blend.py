@@ -122,16 +122,16 @@ class BlendedLoop:
         for node in failed_conditions(self.tree, self._expanded):
             literal = literal_of(node)
             assert literal is not None
-            achievers = non_circular(
-                self.index.achievers(literal, state, self.world.refine), pursued(node)
-            )
+            achievers = self.index.achievers(literal, state, self.world.refine)
+            if self.options.refine_more:
+                achievers = non_circular(achievers, pursued(node))
             self._expanded.add(node)
             if not achievers:
                 self._dead.add(node)
                 missing.append(str(literal))
                 continue
             return self._apply(node, literal, achievers)
-        more = self._reexpand(state)
+        more = self._reexpand(state) if self.options.refine_more else None
         if more is not None:
             return more
         if missing:
@@ -204,7 +204,8 @@ class BlendedLoop:
             self.grounding[action.key] = action
         subtree = expand_tree(self.tree, node, achievers, self.task)
         resolution = resolve_conflicts(
-            self.tree, subtree, self._judge(), self.options.reorder_goals
+            self.tree, subtree, self._judge(), self.options.reorder_goals,
+            self.options.refine_more,
         )
         return self._record(literal, achievers, len(resolution.conflicts), resolution.moves)
 

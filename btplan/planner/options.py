@@ -16,6 +16,9 @@ class PlannerOptions:
     `reorder_goals` lets conflict resolution move an enclosing subtree when moving
     the new subtree alone, as the paper does, finds no conflict-free place. `mutexes`
     judges conflicts by h^2 mutual exclusion rather than by single effects.
+    `refine_more` prunes circular and conflicting achievers and lets a failed,
+    expanded condition gain achievers that fit a later state. `PlannerOptions.paper()`
+    turns every departure from the paper off, for comparison.
     """
 
     max_expansions: int = 1000
@@ -24,4 +27,11 @@ class PlannerOptions:
     heuristic: bool = True
     reorder_goals: bool = True
     mutexes: bool = True
+    refine_more: bool = True
     stall_limit: int = 3
+
+    @classmethod
+    def paper(cls, **changes: int) -> PlannerOptions:
+        """Algorithms 1-3 as published: first-match order, no extensions."""
+        return cls(heuristic=False, reorder_goals=False, mutexes=False, refine_more=False,
+                   **changes)

@@ -112,7 +112,11 @@ def increase_priority(tree: BehaviorTree, subtree: Node) -> bool:
 
 
 def resolve_conflicts(
-    tree: BehaviorTree, subtree: Node, judge: Judge, reorder_goals: bool = True
+    tree: BehaviorTree,
+    subtree: Node,
+    judge: Judge,
+    reorder_goals: bool = True,
+    prune: bool = True,
 ) -> Resolution:
     """Move `subtree` (or, failing that, an enclosing subtree) until nothing conflicts.
 
@@ -124,7 +128,9 @@ def resolve_conflicts(
     first = tuple(find_conflicts(subtree, judge))
     if not first:
         return Resolution((), 0)
-    if prune_conflicting_alternatives(subtree, judge) and not find_conflicts(subtree, judge):
+    if prune and prune_conflicting_alternatives(subtree, judge) and not find_conflicts(
+        subtree, judge
+    ):
         return Resolution(first, 0)
     enclosing = [a for a in _ancestors(subtree) if isinstance(a, Fallback) and a.parent]
     plans: list[tuple[Node, list[Slot]]] = [(subtree, paper_slots(subtree))]
