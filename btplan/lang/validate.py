@@ -208,8 +208,13 @@ class _LiteralChecker:
                     "an equality cannot be a postcondition",
                     "equalities belong under 'where:' or 'pre:'",
                 )
-            for arg in lit.args:
-                self._arg_type(arg, lit, part)
+            left, right = (self._arg_type(arg, lit, part) for arg in lit.args)
+            if not self.types.related(left, right):
+                verdict = "always true" if not lit.positive else "never true"
+                raise lit.at.error(
+                    f"'{lit.literal()}' is {verdict}: {lit.args[0].text} is {article(left)} "
+                    f"and {lit.args[1].text} is {article(right)}"
+                )
             return lit.literal()
         predicate = check_predicate(lit, self.predicates)
         for arg, param in zip(lit.args, predicate.parameters):

@@ -163,6 +163,13 @@ CASES = {
         "an equality cannot be a postcondition",
         "equalities belong under 'where:' or 'pre:'",
     ),
+    "equality of unrelated types": (
+        "where: route(l, t)",
+        "where: route(l, t), l != t",
+        (28, 29),
+        "'l != t' is always true: l is a location and t is a trajectory",
+        None,
+    ),
     "parameter named like a constant": (
         "action Pick(o: object)",
         "action Pick(goal: object)",
