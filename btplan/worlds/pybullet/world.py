@@ -11,14 +11,13 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Callable, Mapping
-from typing import Any
 
 from btplan.bt.status import FAILURE, RUNNING, Status
 from btplan.errors import WorldError
 from btplan.model import ActionTemplate, Atom, GroundAction, Parameter, Task, instantiate
-from btplan.worlds.pybullet import motion
+from btplan.worlds.pybullet import motion, samplers
 from btplan.worlds.pybullet.agents import SceneAgents
-from btplan.worlds.pybullet.geometry import clearance, distance, facing, grid, ring
+from btplan.worlds.pybullet.geometry import clearance, distance
 from btplan.worlds.pybullet.motion import Pose2
 from btplan.worlds.pybullet.paths import CHECK_FROM, Trajectory
 from btplan.worlds.pybullet.record import Recorder
@@ -211,15 +210,7 @@ class PyBulletWorld:
     # --- paths ---------------------------------------------------------------------------
 
     def approach(self, name: str, avoid_cubes: bool = True) -> Pose2 | None:
-        """A collision-free base pose next to a location, facing it, closest to the robot."""
-        target = self.location(name)
-        reach = self.scene.robot_radius + self.scene.cube_size / 2 + 0.08
-        cubes = self.floor_cubes(name, self.held) if avoid_cubes else []
-        spots = [q for q in ring(target, reach) if self.sim.base_free(q[0], q[1], cubes, 0.02)]
-        if not spots:
-            return None
-        best = min(spots, key=lambda q: (round(distance(q, self.base), 3), q))
-        return facing(best, target)
+        return samplers.approach_pose(self, name, avoid_cubes)
 
     def prepare(self, name: str, slack: float = CHECK_FROM) -> None:
         """Plan the trajectory again if it was planned from elsewhere or its target moved.
@@ -344,44 +335,16 @@ class PyBulletWorld:
         if name == "Pick" and len(args) == 1:
             return Pick(self, args[0])
         if name == "Place" and len(args) == 2:
-            return Release(self, args[0], self._put_spot(args[1]) if self.is_near(args[1]) else None)
+            return Release(self, args[0], samplers.place_spot(self, args[1]) if self.is_near(args[1]) else None)
         if name == "ClearPath" and len(args) == 3 and args[1] in self.poses:
             if self.held is not None or not self.is_near(args[0]):
                 return None
             return ClearPath(self, args[0], args[1])
         if name == "Drop" and len(args) == 1:
-            return Release(self, args[0], self._drop_spot(), ticks=1)
+            return Release(self, args[0], samplers.drop_spot(self), ticks=1)
         if name in ("MoveTo", "Pick", "Place", "ClearPath", "Drop"):
             return None
         raise WorldError(f"the PyBullet world has no skill for the action {name!r}")
-
-    def _put_spot(self, place: str) -> Point | None:
-        """Where Place puts a cube: the free spot of a region nearest the robot, or the pose."""
-        if place in self.poses:
-            return self.poses[place]
-        region = self.scene.region(place)
-        if region is None:
-            return None
-        cubes = self.floor_cubes(self.held)
-        spots = [q for q in grid(region.low, region.high, 0.15)
-                 if region.contains(*q, margin=0.1) and self.sim.cube_fits(q[0], q[1], cubes)]
-        reach = [q for q in spots if distance(q, self.base) <= self.scene.near]
-        return min(reach or spots, key=lambda q: (round(distance(q, self.base), 3), q), default=None)
-
-    def _drop_spot(self) -> Point | None:
-        """Beside the robot, off every known path when possible: a dropped cube is in no one's way."""
-        cubes = self.floor_cubes(self.held)
-        reach = self.scene.robot_radius + self.scene.cube_size / 2 + 0.05
-        spots = [q for q in ring(self.base[:2], reach, self.base[2])
-                 if self.sim.cube_fits(q[0], q[1], cubes)]
-        paths = [t.path for t in self.trajectories.values() if t.path]
-        keep = self.scene.robot_radius + self.scene.cube_size
-
-        def score(q: Point) -> tuple[int, float]:
-            worst = min((clearance(q, p) for p in paths), default=10.0)
-            return (0 if worst > keep else 1, -round(min(worst, 10.0), 3))
-
-        return min(spots, key=score, default=None)
 
     # --- refinement ----------------------------------------------------------------------
 
@@ -390,38 +353,8 @@ class PyBulletWorld:
         """Values for a continuous parameter; the same question always gets the same answer."""
         memo = (template.name, parameter.name, tuple(sorted(binding.items())))
         if memo not in self._refined:
-            self._refined[memo] = self._refine(template, binding, parameter)
+            self._refined[memo] = samplers.refine_values(self, template, binding, parameter)
         return list(self._refined[memo])
-
-    def _refine(self, template: ActionTemplate, binding: Mapping[str, str],
-                parameter: Parameter) -> list[str]:
-        domain = self.task.domain
-        related = [lit for lit in template.constraints if parameter.name in lit.args]
-        if domain.is_subtype(parameter.type, "trajectory"):
-            target = self._target_of(template, binding, parameter, related)
-            return [self.new_trajectory(target)] if target is not None else []
-        traj_name = next((v for _, v in sorted(binding.items()) if v in self.trajectories), None)
-        if domain.is_subtype(parameter.type, "pose"):
-            pose = self.sample_pose(self.trajectories.get(traj_name) if traj_name else None)
-            return [pose] if pose is not None else []
-        if traj_name is not None:
-            traj = self.trajectories[traj_name]
-            self.prepare(traj_name)
-            found = sorted(c for c in self.blockers(traj) if c in self.on_floor)
-            allowed = set(self.task.objects_of(parameter.type))
-            found = [c for c in found if c in allowed]
-            traj.clearing.update(found)
-            return found
-        return []
-
-    def _target_of(self, template: ActionTemplate, binding: Mapping[str, str],
-                   parameter: Parameter, related: list[Any]) -> str | None:
-        for lit in related:
-            for arg in lit.args:
-                if arg != parameter.name and arg in binding:
-                    return binding[arg]
-        bound = [binding[p.name] for p in template.parameters if p.name in binding]
-        return bound[0] if bound else None
 
     def new_trajectory(self, target: str) -> str:
         name = f"traj{next(self._counter)}"
@@ -430,32 +363,12 @@ class PyBulletWorld:
         return name
 
     def sample_pose(self, avoid: Trajectory | None) -> str | None:
-        """A spot to put an obstacle: in an `aside` region if the scene has one, off the path."""
-        regions = [r for r in self.scene.regions if r.aside]
-        areas = [(r.low, r.high) for r in regions] or [(
-            (self.scene.bounds[0], self.scene.bounds[2]), (self.scene.bounds[1], self.scene.bounds[3]))]
-        keep = self.scene.robot_radius + self.scene.cube_size + 0.1
-        cubes = self.floor_cubes(self.held)
-        others = [r for r in self.scene.regions if not r.aside]
-        taken = list(self.poses.values())
-        best: tuple[float, Point] | None = None
-        for low, high in areas:
-            for q in grid(low, high, GRID):
-                if any(r.contains(*q, margin=-0.2) for r in others):
-                    continue
-                if avoid is not None and clearance(q, avoid.path) <= keep:
-                    continue
-                if any(distance(q, t) < 0.3 for t in taken):
-                    continue
-                if not self.sim.cube_fits(q[0], q[1], cubes, 0.15):
-                    continue
-                score = round(distance(q, self.base), 3)
-                if best is None or (score, q) < best:
-                    best = (score, q)
-        if best is None:
+        """Reserve a spot off `avoid`'s path to put an obstacle, and name it."""
+        spot = samplers.aside_spot(self, avoid)
+        if spot is None:
             return None
         name = f"pose{len(self.poses) + 1}"
-        self.poses[name] = best[1]
+        self.poses[name] = spot
         return name
 
     # --- lifecycle -----------------------------------------------------------------------
