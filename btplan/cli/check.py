@@ -11,6 +11,7 @@ from rich.markup import escape
 
 from btplan.cli.app import EXIT_BAD_INPUT, app, format_input_error, guarded, stderr
 from btplan.lang import Collection, InputErrors, collect
+from btplan.lang.writers import bt_literal
 from btplan.model import ROOT_TYPE
 
 stdout = Console(highlight=False, soft_wrap=True)
@@ -35,6 +36,8 @@ def check(
             stderr.print(f"[bold red]error:[/] {escape(format_input_error(error))}")
         stderr.print(f"{len(errors.errors)} errors")
         raise typer.Exit(EXIT_BAD_INPUT) from None
+    for remark in collection.warnings:
+        stderr.print(f"[bold yellow]warning:[/] {escape(format_input_error(remark))}")
     if as_json:
         typer.echo(json.dumps(to_json(collection), indent=2))
         return
@@ -70,8 +73,8 @@ def summary(collection: Collection) -> str:
         lines += [
             f"[bold]problem[/] {problem.name} for {problem.domain}",
             _row("objects", [o.name for o in problem.objects]),
-            f"  {'init':<11} {len(problem.init)} facts",
-            _row("goal", [str(g) for g in problem.goal]),
+            f"  {'init':<11} {len(problem.init)} fact{'s' if len(problem.init) != 1 else ''}",
+            _row("goal", [bt_literal(g) for g in problem.goal]),
         ]
     return "\n".join(lines)
 

@@ -50,6 +50,8 @@ class Collection:
     owners: tuple[int, ...]
     """For each problem, the index in `domains` of the domain it was checked against."""
     paths: tuple[str, ...]
+    warnings: tuple[InputError, ...] = ()
+    """Located remarks on legal input that is very likely a mistake."""
 
     def task(self, problem: str | None = None) -> Task:
         """The first problem with its domain, or the one called `problem`."""
@@ -141,7 +143,9 @@ def collect(paths: Sequence[str]) -> Collection:
                 problems.append(problem)
                 owners.append(next(i for i, d in enumerate(everywhere) if d is domain))
     report.raise_errors(paths)
-    return Collection(tuple(everywhere), tuple(problems), tuple(owners), tuple(paths))
+    return Collection(
+        tuple(everywhere), tuple(problems), tuple(owners), tuple(paths), tuple(report.warnings)
+    )
 
 
 def _domain_for(syntax: ProblemSyntax, domains: list[Domain], broken: set[str]) -> Domain | None:

@@ -1,5 +1,8 @@
 """Collect several mistakes of one input, so a user can fix them in one pass.
 
+Warnings are collected alongside: legal input that is almost certainly not what was
+meant (a goal no action can reach). The library returns them; `btplan check` prints them.
+
 Checks run per declaration, per literal and per fact; a mistake in one does not hide
 the others. Callers that show one error see the first (`InputErrors` is an InputError);
 `btplan check` shows them all.
@@ -33,6 +36,11 @@ class Report:
 
     def __init__(self) -> None:
         self.errors: list[InputError] = []
+        self.warnings: list[InputError] = []
+        """Located remarks on legal input that is very likely a mistake; never raised."""
+
+    def warn(self, remark: InputError) -> None:
+        self.warnings.append(remark)
 
     def add(self, error: InputError) -> None:
         members = error.errors if isinstance(error, InputErrors) else (error,)

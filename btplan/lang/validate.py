@@ -21,6 +21,7 @@ from btplan.lang.syntax import (
     TypedSyntax,
 )
 from btplan.lang.types import TypeTable
+from btplan.lang.writers import bt_literal
 from btplan.model import (
     EQUALITY,
     ROOT_TYPE,
@@ -179,7 +180,9 @@ def _check_contradictions(literals: tuple[LiteralSyntax, ...], what: str, why: s
         other = seen.get(key)
         if other is not None and other.positive != lit.positive:
             raise lit.at.error(
-                f"contradictory {what}: '{other.literal()}' and '{lit.literal()}'", why
+                f"contradictory {what}: "
+                f"'{bt_literal(other.literal())}' and '{bt_literal(lit.literal())}'",
+                why,
             )
         seen[key] = lit
 
@@ -212,7 +215,7 @@ class _LiteralChecker:
             if not self.types.related(left, right):
                 verdict = "always true" if not lit.positive else "never true"
                 raise lit.at.error(
-                    f"'{lit.literal()}' is {verdict}: {lit.args[0].text} is {article(left)} "
+                    f"'{bt_literal(lit.literal())}' is {verdict}: {lit.args[0].text} is {article(left)} "
                     f"and {lit.args[1].text} is {article(right)}"
                 )
             return lit.literal()
@@ -309,6 +312,7 @@ def build_problem(syntax: ProblemSyntax, domain: Domain, report: Report | None =
             init.append(report.attempt(facts.check, lit, "initial fact"))
     goal = [report.attempt(facts.check, lit, "goal") for lit in syntax.goal]
     report.attempt(_check_contradictions, syntax.goal, "goal conditions", "no state satisfies both")
+    _warn_unreachable(syntax.goal, init, domain, report)
     if own:
         report.raise_errors()
     return Problem(
@@ -318,6 +322,30 @@ def build_problem(syntax: ProblemSyntax, domain: Domain, report: Report | None =
         init=tuple(dict.fromkeys(x for x in init if x is not None)),
         goal=tuple(x for x in goal if x is not None),
     )
+
+
+def _warn_unreachable(
+    goal: tuple[LiteralSyntax, ...], init: list[Literal | None], domain: Domain, report: Report
+) -> None:
+    """Warn about goals on static predicates that are false from the start.
+
+    No action changes such a predicate, so no plan can reach them; this is legal input,
+    but planning is certain to fail, and the place of the goal is known only here.
+    """
+    facts = {(x.predicate, x.args) for x in init if x is not None}
+    for lit in goal:
+        name = lit.predicate.text
+        if name not in domain.predicate_map or name in domain.changed_predicates:
+            continue
+        holds = (name, tuple(a.text for a in lit.args)) in facts
+        if holds != lit.positive:
+            report.warn(
+                lit.at.error(
+                    f"the goal '{bt_literal(lit.literal())}' can never hold",
+                    f"no action changes '{name}', and it is "
+                    f"{'false' if lit.positive else 'true'} initially",
+                )
+            )
 
 
 class _FactChecker:

@@ -101,3 +101,18 @@ def test_standard_input_in_either_language() -> None:
     pddl = runner.invoke(app, ["generate", "logistics", "--packages", "2"]).stdout
     result = runner.invoke(app, ["check", "-"], input=pddl)
     assert result.exit_code == 0 and "problem logistics_2_s0 for logistics" in result.stdout
+
+
+def test_warnings_go_to_stderr_and_keep_exit_0(tmp_path: Path) -> None:
+    path = tmp_path / "static_goal.bt"
+    path.write_text(
+        (DOMAINS / "pick_place.bt")
+        .read_text()
+        .replace("on(cube, goal)\n", "route(cube, tau_goal)\n")
+    )
+    result = runner.invoke(app, ["check", str(path)])
+    assert result.exit_code == 0
+    assert result.stderr.startswith(
+        f"warning: {path}:60:9: the goal 'route(cube, tau_goal)' can never hold"
+    )
+    assert "ok: 2 definitions checked" in result.stdout

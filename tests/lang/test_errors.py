@@ -291,3 +291,27 @@ def test_an_unknown_type_is_reported_once() -> None:
     assert not isinstance(caught.value, InputErrors)
     assert caught.value.message == "unknown type 'objct'"
     assert caught.value.hint == "did you mean 'object'?"
+
+
+UNREACHABLE = """
+domain d {
+    predicates { p  q(x: object) }
+    action A(x: object) { pre: q(x) post: not q(x) }
+}
+problem pr for d {
+    objects { a }
+    init { q(a) }
+    goal { p, not q(a) }
+}
+"""
+
+
+def test_goals_no_action_can_reach_are_warned_about(tmp_path: Path) -> None:
+    path = tmp_path / "unreachable.bt"
+    path.write_text(UNREACHABLE)
+    collection = collect([str(path)])
+    assert collection.problems[0].name == "pr"  # legal input: a warning, not an error
+    (remark,) = collection.warnings
+    assert remark.message == "the goal 'p' can never hold"
+    assert remark.hint == "no action changes 'p', and it is false initially"
+    assert remark.span is not None and (remark.span.line, remark.span.column) == (9, 12)
