@@ -79,6 +79,46 @@ def plan(
         opts = replace(opts, max_expansions=max_expansions)
     started = time.perf_counter()
     deadline = None if timeout is None else started + timeout
+    strategies = [opts] if options is not None else fallback_strategies(opts)
+    first_error: PlanningError | None = None
+    for strategy in strategies:
+        try:
+            return _attempt(task, seed, strategy, max_ticks, deadline, timeout, on_expansion,
+                            started)
+        except BudgetExceededError:
+            raise
+        except PlanningError as error:
+            first_error = first_error or error
+    assert first_error is not None
+    raise first_error
+
+
+def fallback_strategies(options: PlannerOptions) -> list[PlannerOptions]:
+    """The default options, then wider fallbacks, then no goal reordering.
+
+    Backchaining commits to the achievers it ranked best in the state it expanded
+    in; when that leads nowhere, starting over with more alternatives per condition,
+    or with the paper's own priority moves only, often does. Deterministic: always the
+    same list, in the same order.
+    """
+    return [
+        options,
+        replace(options, max_alternatives=options.max_alternatives * 2),
+        replace(options, reorder_goals=False),
+    ]
+
+
+def _attempt(
+    task: Task,
+    seed: int,
+    opts: PlannerOptions,
+    max_ticks: int,
+    deadline: float | None,
+    timeout: float | None,
+    on_expansion: Callable[[BehaviorTree, Expansion], None] | None,
+    started: float,
+) -> PlanResult:
+    """Rounds of Algorithm 1 from the initial state until one needs no expansion."""
     world = SymbolicWorld(task, seed=seed)
     loop = BlendedLoop(task, world, opts)
     ticks_left = max_ticks
