@@ -48,8 +48,10 @@ def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = 
     if scene is None and not path.exists():
         raise WorldError(f"no scene for domain {task.domain.name!r}: pass one with --scenario")
     loaded = load_scene(path)
+    arity = {p.name: p.arity for p in task.domain.predicates}
+    agents = scene_agents(loaded.events, str(path), arity)
     world = PyBulletWorld(task, loaded, seed=seed, gui=gui, verbose=verbose)
-    world.agents = scene_agents(loaded.events, str(path))
+    world.agents = agents
     if recorder is not None:
         world.recorder = recorder
         world.on_frame = recorder

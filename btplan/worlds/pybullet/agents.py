@@ -8,7 +8,10 @@ ticks on which it becomes true, and fires `delay` ticks after the `count`-th tim
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from difflib import get_close_matches
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from btplan.errors import InputError, Span
@@ -82,12 +85,41 @@ class SceneAgents:
         return happened
 
 
-def scene_agents(events: tuple[Event, ...], path: str) -> SceneAgents:
+def scene_agents(events: tuple[Event, ...], path: str,
+                 predicates: Mapping[str, int] | None = None) -> SceneAgents:
+    """The scene's events as one agent; `when` conditions must use the domain's predicates."""
+    lines = _lines(path)
     scripted = []
     for event in events:
-        literal = parse_literal(event.when, Span(path, 1, 1)) if event.when else None
+        literal = None
+        if event.when:
+            where, source = _locate(lines, path, event.when)
+            literal = parse_literal(event.when, where)
+            _, name, args = literal
+            if predicates is not None and predicates.get(name) != len(args):
+                known = sorted(predicates)
+                near = get_close_matches(name, known, n=1)
+                hint = f"did you mean '{near[0]}'?" if near and near[0] != name else (
+                    f"{name} takes {predicates[name]} arguments" if name in predicates else None)
+                raise InputError(f"event '{event.name}': {event.when!r} is not a condition of "
+                                 "the domain", where, hint, source)
         scripted.append(ScriptedEvent(event, literal))
     return SceneAgents(scripted)
+
+
+def _lines(path: str) -> list[str]:
+    try:
+        return Path(path).read_text(encoding="utf-8").splitlines()
+    except OSError:
+        return []
+
+
+def _locate(lines: list[str], path: str, text: str) -> tuple[Span, str | None]:
+    for number, line in enumerate(lines, 1):
+        column = line.find(text)
+        if column >= 0:
+            return Span(path, number, column + 1), line
+    return Span(path, 1, 1), None
 
 
 def apply(world: PyBulletWorld, event: Event) -> str:

@@ -113,6 +113,7 @@ def refine_values(world: PyBulletWorld, template: ActionTemplate, binding: Mappi
         return found
     return []
 
+
 def _target_of(template: ActionTemplate, binding: Mapping[str, str], parameter: Parameter,
                related: list[Literal]) -> str | None:
     """The location a trajectory leads to: named with it in a `where`, else the first bound."""

@@ -100,6 +100,7 @@ class Scene:
 
 _TOML_AT = re.compile(r"\(at line (\d+), column (\d+)\)")
 DO = ("move", "remove", "slip")
+_LITERAL = re.compile(r"^\s*(not\s+)?[A-Za-z_]\w*\s*(\(\s*(\w+\s*(,\s*\w+\s*)*)?\))?\s*$")
 
 
 def load_scene(path: str | Path) -> Scene:
@@ -206,6 +207,10 @@ class _Reader:
                             f"cubes are {', '.join(sorted(cubes))}")
         if ("tick" in t) == ("when" in t):
             raise self.fail(f"event '{name}': give exactly one of 'tick' or 'when'", name)
+        when = t.get("when")
+        if when is not None and not (isinstance(when, str) and _LITERAL.match(when)):
+            raise self.fail(f"event '{name}': cannot read the condition {when!r}", str(when),
+                            "write it as in the domain, e.g. holding(green) or not near(goal)")
         to = self.point(t["to"], "to") if "to" in t else None
         if do == "move" and to is None:
             raise self.fail(f"event '{name}': a move needs 'to = [x, y]'", name)

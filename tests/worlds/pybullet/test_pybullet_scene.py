@@ -60,3 +60,13 @@ def test_a_missing_file_is_an_input_error(tmp_path: Path) -> None:
 ])
 def test_event_conditions_are_written_as_in_the_domain(text: str, expected: object) -> None:
     assert parse_literal(text, None) == expected
+
+
+def test_an_unreadable_event_condition_is_located(tmp_path: Path) -> None:
+    event = '\n[[event]]\nname = "e"\nwhen = "holding(green"\ndo = "remove"\ncube = "red"\n'
+    with pytest.raises(InputError) as caught:
+        load_scene(write_scene(tmp_path, OPEN_ROOM + event))
+    error = caught.value
+    assert "cannot read the condition" in error.message
+    assert error.span is not None and error.span.line == OPEN_ROOM.count("\n") + 4
+    assert error.source_line == 'when = "holding(green"'

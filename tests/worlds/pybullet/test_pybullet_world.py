@@ -156,3 +156,14 @@ def test_a_scene_without_a_location_of_the_problem_is_refused(tmp_path: Path) ->
     Path(text).write_text(Path(text).read_text().replace('name = "goal"', 'name = "target"'))
     with pytest.raises(WorldError, match="'goal' is a location in the problem but not in the scene"):
         open_world(TASK, text)
+
+
+def test_an_event_condition_must_be_a_predicate_of_the_domain(tmp_path: Path) -> None:
+    from btplan.errors import InputError
+
+    event = '\n[[event]]\nname = "e"\nwhen = "holdng(green)"\ndo = "remove"\ncube = "red"\n'
+    with pytest.raises(InputError) as caught:
+        open_world(TASK, write_scene(tmp_path, events=event))
+    assert "is not a condition of the domain" in caught.value.message
+    assert caught.value.hint == "did you mean 'holding'?"
+    assert caught.value.source_line == 'when = "holdng(green)"'
