@@ -32,7 +32,7 @@ def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = 
     from btplan.worlds.pybullet.sim import quiet_stdout
 
     try:
-        with quiet_stdout():
+        with quiet_stdout((1, 2)):
             for module in ("pybullet", "ompl", "PIL"):
                 importlib.import_module(module)
     except ImportError as error:

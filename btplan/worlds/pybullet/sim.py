@@ -16,6 +16,7 @@ import sys
 from collections.abc import Iterator
 from typing import Any
 
+from btplan.errors import WorldError
 from btplan.worlds.pybullet.motion import Pose2
 from btplan.worlds.pybullet.scene import Point, Scene
 
@@ -26,18 +27,25 @@ PARKED_Z = -10.0    # cubes not in the scene (yet, or any more) wait far below t
 
 
 @contextlib.contextmanager
-def quiet_stdout() -> Iterator[None]:
-    """Send the C-level stdout (fd 1) to /dev/null: URDF loading prints warnings there."""
+def quiet_stdout(fds: tuple[int, ...] = (1,)) -> Iterator[None]:
+    """Send C-level output (fd 1, and fd 2 if asked) to /dev/null.
+
+    URDF loading prints warnings on fd 1, where btplan writes data; importing pybullet
+    prints its build date on fd 2, which is only noise.
+    """
     sys.stdout.flush()
-    saved = os.dup(1)
+    sys.stderr.flush()
+    saved = [os.dup(fd) for fd in fds]
     null = os.open(os.devnull, os.O_WRONLY)
     try:
-        os.dup2(null, 1)
+        for fd in fds:
+            os.dup2(null, fd)
         yield
     finally:
         _flush_c_stdio()  # C printf output still buffered must go to /dev/null, not to us
-        os.dup2(saved, 1)
-        os.close(saved)
+        for fd, copy in zip(fds, saved):
+            os.dup2(copy, fd)
+            os.close(copy)
         os.close(null)
 
 
@@ -59,14 +67,19 @@ class Sim:
     """One PyBullet client holding the scene's bodies."""
 
     def __init__(self, scene: Scene, gui: bool = False) -> None:
-        with quiet_stdout():  # the pybullet module prints its build time on import
+        with quiet_stdout((1, 2)):  # the pybullet module prints its build time on import
             p: Any = importlib.import_module("pybullet")
             pybullet_data: Any = importlib.import_module("pybullet_data")
 
         self.p = p
         self.scene = scene
+        if gui and sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
+            raise WorldError("--gui needs a display (DISPLAY is not set); run headless instead")
         with quiet_stdout():
             self.client = p.connect(p.GUI if gui else p.DIRECT)
+        if self.client < 0:
+            raise WorldError("could not connect to PyBullet" + (" with a window" if gui else ""))
+        with quiet_stdout():
             p.setAdditionalSearchPath(pybullet_data.getDataPath(), physicsClientId=self.client)
             p.loadURDF("plane.urdf", physicsClientId=self.client)
             self.robot = p.loadURDF("husky/husky.urdf", globalScaling=HUSKY_SCALE,
