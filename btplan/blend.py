@@ -107,6 +107,8 @@ class BlendedLoop:
                 self._stalls = 0
             else:
                 self._stall(before)
+        else:
+            self._stalls = 0
         after = self.world.facts()
         if after != before:
             key = (after, len(self.expansions))

@@ -71,3 +71,57 @@ def test_budgets_are_enforced_and_reported() -> None:
     assert result.exit_code == 1 and "expansion budget" in result.stderr
     result = runner.invoke(app, ["plan", PICK, "--max-ticks", "0"])
     assert result.exit_code == 2
+
+
+def test_plan_reads_pddl_domain_and_problem(tmp_path: Path) -> None:
+    from btplan.lang.generators import generate
+
+    domain_text, problem_text = generate("gripper", "pddl", seed=1, balls=3)
+    domain, problem = tmp_path / "domain.pddl", tmp_path / "problem.pddl"
+    domain.write_text(domain_text)
+    problem.write_text(problem_text)
+    plan = tmp_path / "plan.txt"
+    result = runner.invoke(app, ["plan", str(domain), str(problem), "-f", "ascii",
+                                 "--plan-out", str(plan)])
+    assert result.exit_code == 0, result.output
+    steps = plan.read_text().splitlines()
+    assert steps and all(s.startswith("(") and s.endswith(")") for s in steps)
+    assert {s.split()[0] for s in steps} <= {"(move", "(pick", "(drop"}
+
+
+def test_an_unresolvable_goal_interaction_exits_1_naming_the_condition(tmp_path: Path) -> None:
+    path = tmp_path / "swap.bt"
+    path.write_text(SWAP)
+    result = runner.invoke(app, ["plan", str(path)])
+    assert result.exit_code == 1
+    assert "holds(r2, a)" in result.stderr and "Traceback" not in result.output
+
+
+SWAP = """
+domain registers {
+    types {
+        register
+        value
+    }
+    predicates {
+        holds(r: register, v: value)
+    }
+    action copy(target: register, source: register, v: value, old: value) {
+        where: target != source, v != old
+        pre:  holds(source, v), holds(target, old)
+        post: holds(target, v), not holds(target, old)
+    }
+}
+problem swap for registers {
+    objects {
+        r1, r2, r3 : register
+        a, b, c : value
+    }
+    init {
+        holds(r1, a), holds(r2, b), holds(r3, c)
+    }
+    goal {
+        holds(r1, b), holds(r2, a)
+    }
+}
+"""

@@ -95,3 +95,39 @@ def test_example_2_right_after_the_expansion_matches_figure_8a_then_8b() -> None
     assert [e.condition for e in report.expansions] == ["free(tau_goal)"]
     place = shape(loop.tree.root)[2]
     assert place[1][1] == "free(tau_goal)" and place[2] == HOLD_CUBE
+
+
+def test_a_failing_action_is_retried_and_a_stuck_one_reported() -> None:
+    loop, world = loop_for("pick_place.bt")
+    world.fail_next("Pick")
+    assert loop.run(100).reached
+    assert [str(a) for a in world.failed] == ["Pick(cube)"]
+    assert len(loop.expansions) == 4  # the failure cost a retry, not an expansion
+
+    loop, world = loop_for("pick_place.bt")
+    for _ in range(10):
+        world.fail_next("Pick")
+    from btplan.errors import NoProgressError
+
+    try:
+        loop.run(200)
+    except NoProgressError as error:
+        assert "Pick(cube)" in error.reason
+    else:
+        raise AssertionError("an action that always fails must stop the loop")
+
+
+def test_an_outside_undo_is_redone_without_expansion() -> None:
+    loop, world = loop_for("pick_place.bt")
+    undone: list[int] = []
+
+    def hook(tick: int) -> None:
+        if not undone and Atom("holding", ("cube",)) in world.facts():
+            undone.append(tick)  # the cube slips out of the gripper
+            world.clear_fact(Atom("holding", ("cube",)))
+            world.set_fact(Atom("hand_empty", ()))
+
+    result = loop.run(100, before_tick=hook)
+    assert result.reached and undone
+    assert len(loop.expansions) == 4
+    assert [str(a) for a in world.executed].count("Pick(cube)") == 2
