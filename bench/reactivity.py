@@ -214,16 +214,17 @@ def replanning_episode(task: Task, agents: list[Agent], seed: int, max_ticks: in
 
 
 def blended_episode(task: Task, agents: list[Agent], seed: int, max_ticks: int,
-                    heuristic: bool = True) -> Episode:
+                    paper: bool = False) -> Episode:
     """Algorithm 1 online; planning time is the time of the ticks that expanded the tree.
 
     A PlanningError (no achiever, no progress) ends the episode as a failure.
-    `heuristic` is the planner's h_add ranking and pruning of achievers. The stall
-    limit (how many failing ticks in a row with nothing to expand the loop accepts)
-    is raised to the tick budget: the baseline also retries until the budget runs out.
+    `paper` turns btplan's extensions off (PlannerOptions.paper()). The stall limit
+    (how many failing ticks in a row with nothing to expand the loop accepts) is
+    raised to the tick budget: the baseline also retries until the budget runs out.
     """
     world = SymbolicWorld(task, seed=seed)
-    options = PlannerOptions(heuristic=heuristic, stall_limit=max_ticks)
+    options = (PlannerOptions.paper(stall_limit=max_ticks) if paper
+               else PlannerOptions(stall_limit=max_ticks))
     loop = BlendedLoop(task, world, options)
     calls, spent, seen = 0, 0.0, 0
     for tick in range(1, max_ticks + 1):
@@ -247,7 +248,7 @@ def blended_episode(task: Task, agents: list[Agent], seed: int, max_ticks: int,
 Runner = Callable[[Task, list[Agent], int, int], Episode]
 METHODS: tuple[tuple[str, Runner], ...] = (
     ("btplan", blended_episode),
-    ("btplan-no-h", functools.partial(blended_episode, heuristic=False)),
+    ("btplan-paper", functools.partial(blended_episode, paper=True)),
     ("replan", replanning_episode),
     ("replan-pyperplan", functools.partial(replanning_episode, planner=pyperplan_plan)),
 )
@@ -314,7 +315,7 @@ def plot(rows: Sequence[Row], path: Path) -> None:
     for i, name in enumerate(names):
         for j, (field, label) in enumerate(metrics):
             ax = axes[i][j]
-            for method, style in (("btplan", "o-"), ("btplan-no-h", "^:"), ("replan", "s--"),
+            for method, style in (("btplan", "o-"), ("btplan-paper", "^:"), ("replan", "s--"),
                                   ("replan-pyperplan", "x-.")):
                 pts = [r for r in rows if r.scenario == name and r.method == method]
                 ax.plot([r.rate for r in pts], [getattr(r, field) for r in pts], style, label=method)
