@@ -1,6 +1,6 @@
 """Read PDDL (STRIPS with typing, negative preconditions and equality) into located syntax.
 
-grammar/pddl.lark only finds lists and tokens; the meaning is given here, so that any
+btplan/lang/sexpr.py finds the lists and tokens; the meaning is given here, so that any
 construct or requirement outside the supported fragment is refused by name, at its
 place, instead of being misread.
 """
@@ -8,13 +8,8 @@ place, instead of being misread.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass
-from functools import cache
 
-from lark import Lark, Token, Transformer_NonRecursive
-from lark.exceptions import UnexpectedInput
-
-from btplan.lang.diagnostics import syntax_error
+from btplan.lang.sexpr import Group, Item, Word, expect_group, expect_word, place, read_items
 from btplan.lang.syntax import (
     ActionSyntax,
     DomainSyntax,
@@ -23,21 +18,11 @@ from btplan.lang.syntax import (
     ParameterSyntax,
     PredicateSyntax,
     ProblemSyntax,
-    Source,
     TypedSyntax,
-    Where,
 )
 from btplan.model import EQUALITY, ROOT_TYPE
 
 SUPPORTED = (":strips", ":typing", ":negative-preconditions", ":equality")
-
-WORDS = {
-    "NAME": "a name",
-    "VARIABLE": "a variable",
-    "KEYWORD": "a keyword",
-    "NUMBER": "a number",
-    "SYMBOL": "a symbol",
-}
 
 NEEDS = {
     "or": ":disjunctive-preconditions",
@@ -56,103 +41,26 @@ NEEDS = {
 FRAGMENT = "btplan reads PDDL with " + ", ".join(SUPPORTED) + " and constants"
 
 
-@dataclass(frozen=True, slots=True)
-class Word:
-    """A token of the s-expression: a name, a variable, a keyword or a symbol."""
-
-    text: str
-    kind: str
-    at: Where
-
-
-@dataclass(frozen=True, slots=True)
-class Group:
-    """A parenthesised list; `at` is its opening parenthesis."""
-
-    items: tuple[Item, ...]
-    at: Where
-
-    def head(self) -> str | None:
-        first = self.items[0] if self.items else None
-        return first.text if isinstance(first, Word) else None
-
-
-Item = Word | Group
-
 Units = list[DomainSyntax | ProblemSyntax]
-
-
-@cache
-def pddl_parser() -> Lark:
-    """The PDDL s-expression parser, loaded from the installed package data."""
-    return Lark.open_from_package("btplan.grammar", "pddl.lark", parser="lalr")
 
 
 def read_pddl(text: str, path: str) -> Units:
     """Parse PDDL text (a domain, a problem, or both) into located syntax."""
-    source = Source(text, path)
-    parser = pddl_parser()
-    try:
-        tree = parser.parse(text)
-    except UnexpectedInput as error:
-        raise syntax_error(error, parser, source, WORDS) from None
-    items: list[Item] = _ToItems(source).transform(tree)
     units: Units = []
-    for item in items:
-        define = _expect_group(item, "a '(define ...)' form")
-        _expect_word(define.items[0] if define.items else None, define, "define", "'define'")
+    for item in read_items(text, path):
+        define = expect_group(item, "a '(define ...)' form")
+        expect_word(define.items[0] if define.items else None, define, "define", "'define'")
         kind = define.items[1] if len(define.items) > 1 else None
         if isinstance(kind, Group) and kind.head() == "domain":
             units.append(_domain(define))
         elif isinstance(kind, Group) and kind.head() == "problem":
             units.append(_problem(define))
         else:
-            raise _place(kind, define).error("expected '(domain NAME)' or '(problem NAME)'")
+            raise place(kind, define).error("expected '(domain NAME)' or '(problem NAME)'")
     return units
 
 
-class _ToItems(Transformer_NonRecursive):  # type: ignore[type-arg]
-    def __init__(self, source: Source) -> None:
-        super().__init__()
-        self.source = source
-
-    def word(self, token: Token) -> Word:
-        where = self.source.at(token.line or 1, token.column or 1)
-        text = str(token).lower() if token.type != "SYMBOL" else str(token)
-        return Word(text, token.type, where)
-
-    def _items(self, children: list[Token | Group]) -> tuple[Item, ...]:
-        return tuple(c if isinstance(c, Group) else self.word(c) for c in children)
-
-    def start(self, children: list[Token | Group]) -> list[Item]:
-        return list(self._items(children))
-
-    def list(self, children: list[Token | Group]) -> Group:
-        opening = children[0]
-        assert isinstance(opening, Token)
-        where = self.source.at(opening.line or 1, opening.column or 1)
-        return Group(self._items(children[1:-1]), where)
-
-
 # --- small helpers ---------------------------------------------------------------------
-
-
-def _place(item: Item | None, parent: Group) -> Where:
-    return item.at if item is not None else parent.at
-
-
-def _expect_group(item: Item | None, what: str, parent: Group | None = None) -> Group:
-    if isinstance(item, Group):
-        return item
-    where = item.at if item is not None else (parent.at if parent else None)
-    assert where is not None
-    raise where.error(f"expected {what}")
-
-
-def _expect_word(item: Item | None, parent: Group, text: str | None, what: str) -> Word:
-    if isinstance(item, Word) and item.kind == "NAME" and (text is None or item.text == text):
-        return item
-    raise _place(item, parent).error(f"expected {what}")
 
 
 def _name(word: Word) -> Name:
@@ -161,10 +69,10 @@ def _name(word: Word) -> Name:
 
 def _sections(define: Group) -> Iterator[tuple[str, Group]]:
     for item in define.items[2:]:
-        group = _expect_group(item, "a section such as '(:predicates ...)'", define)
+        group = expect_group(item, "a section such as '(:predicates ...)'", define)
         head = group.items[0] if group.items else None
         if not isinstance(head, Word) or head.kind != "KEYWORD":
-            raise _place(head, group).error("expected a section keyword such as ':action'")
+            raise place(head, group).error("expected a section keyword such as ':action'")
         yield head.text, group
 
 
@@ -219,7 +127,7 @@ def _typed(items: tuple[Item, ...]) -> tuple[TypedSyntax, ...]:
 def _domain(define: Group) -> DomainSyntax:
     header = define.items[1]
     assert isinstance(header, Group)
-    name = _expect_word(
+    name = expect_word(
         header.items[1] if len(header.items) > 1 else None, header, None, "the domain's name"
     )
     requirements: list[Name] = []
@@ -262,8 +170,8 @@ def _implicit_types(declared: list[TypedSyntax]) -> list[TypedSyntax]:
 
 
 def _predicate(item: Item, section: Group) -> PredicateSyntax:
-    group = _expect_group(item, "a predicate such as '(on ?x ?y)'", section)
-    head = _expect_word(group.items[0] if group.items else None, group, None, "a predicate name")
+    group = expect_group(item, "a predicate such as '(on ?x ?y)'", section)
+    head = expect_word(group.items[0] if group.items else None, group, None, "a predicate name")
     params = tuple(
         ParameterSyntax(Name(w.text[1:], w.at), _name(t) if t else None)
         for w, t in _typed_list(group.items[1:], "VARIABLE")
@@ -272,7 +180,7 @@ def _predicate(item: Item, section: Group) -> PredicateSyntax:
 
 
 def _action(group: Group, constants: set[str]) -> ActionSyntax:
-    name = _expect_word(
+    name = expect_word(
         group.items[1] if len(group.items) > 1 else None, group, None, "the action's name"
     )
     fields: dict[str, Item] = {}
@@ -288,7 +196,7 @@ def _action(group: Group, constants: set[str]) -> ActionSyntax:
         fields[key.text] = items[index + 1]
     params_group = fields.get(":parameters")
     variables = (
-        _typed_list(_expect_group(params_group, "a parameter list", group).items, "VARIABLE")
+        _typed_list(expect_group(params_group, "a parameter list", group).items, "VARIABLE")
         if params_group is not None
         else []
     )
@@ -337,7 +245,7 @@ def _literals(item: Item, parent: Group) -> tuple[LiteralSyntax, ...]:
     out: list[LiteralSyntax] = []
     stack: list[Item] = [item]
     while stack:
-        current = _expect_group(stack.pop(), "a condition in parentheses", parent)
+        current = expect_group(stack.pop(), "a condition in parentheses", parent)
         head = current.head()
         if not current.items:
             continue
@@ -346,7 +254,7 @@ def _literals(item: Item, parent: Group) -> tuple[LiteralSyntax, ...]:
         elif head == "not":
             if len(current.items) != 2:
                 raise current.at.error("'not' takes exactly one condition")
-            inner = _expect_group(current.items[1], "a condition after 'not'", current)
+            inner = expect_group(current.items[1], "a condition after 'not'", current)
             literal = _atom(inner)
             out.append(LiteralSyntax(literal.predicate, literal.args, False, literal.at))
         else:
@@ -357,7 +265,7 @@ def _literals(item: Item, parent: Group) -> tuple[LiteralSyntax, ...]:
 def _atom(group: Group) -> LiteralSyntax:
     head = group.items[0] if group.items else None
     if not isinstance(head, Word):
-        raise _place(head, group).error("expected a predicate name")
+        raise place(head, group).error("expected a predicate name")
     if head.text in NEEDS or head.text in ("and", "not"):
         needs = NEEDS.get(head.text)
         reason = f"it needs the requirement {needs}" if needs else "it is nested too deeply"
@@ -382,7 +290,7 @@ def _atom(group: Group) -> LiteralSyntax:
 def _problem(define: Group) -> ProblemSyntax:
     header = define.items[1]
     assert isinstance(header, Group)
-    name = _expect_word(
+    name = expect_word(
         header.items[1] if len(header.items) > 1 else None, header, None, "the problem's name"
     )
     domain: Word | None = None
@@ -391,7 +299,7 @@ def _problem(define: Group) -> ProblemSyntax:
     goal: tuple[LiteralSyntax, ...] = ()
     for key, group in _sections(define):
         if key == ":domain":
-            domain = _expect_word(
+            domain = expect_word(
                 group.items[1] if len(group.items) > 1 else None, group, None, "the domain's name"
             )
         elif key == ":requirements":
