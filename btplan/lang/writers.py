@@ -176,6 +176,8 @@ def pddl_domain(domain: Domain) -> str:
 def _pddl_action(action: ActionTemplate) -> list[str]:
     if any(p.refined for p in action.parameters):
         raise _unwritable(f"the refined parameters of {action.name}")
+    if action.cost != 1.0 or action.duration != 1:
+        raise _unwritable(f"the cost or duration of {action.name}")
     names = frozenset(p.name for p in action.parameters)
     params = _pddl_typed((f"?{p.name}", p.type) for p in action.parameters)
     pre = [pddl_literal(x, names) for x in (*action.constraints, *action.preconditions)]

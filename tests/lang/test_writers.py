@@ -47,3 +47,13 @@ def test_pddl_problem_of_a_bundled_domain_reads_back(tmp_path: Path) -> None:
     assert again.problem == task.problem
     assert again.domain.actions == task.domain.actions
     assert again.domain.requirements == (":strips", ":typing")
+
+
+def test_pddl_refuses_costs_and_durations_rather_than_dropping_them() -> None:
+    domain = parse_bt(
+        "domain d { predicates { p } action A() { post: p  cost: 2 } }", "d.bt"
+    ).domain
+    assert domain is not None
+    with pytest.raises(InputError) as caught:
+        pddl_domain(domain)
+    assert caught.value.message == "cannot be written as PDDL: the cost or duration of A"
