@@ -125,3 +125,24 @@ problem swap for registers {
     }
 }
 """
+
+
+def test_output_does_not_depend_on_the_hash_seed(tmp_path: Path) -> None:
+    import os
+    import subprocess
+    import sys
+
+    from btplan.lang.generators import generate
+
+    domain_text, problem_text = generate("logistics", "pddl", seed=1, packages=3)
+    (tmp_path / "d.pddl").write_text(domain_text)
+    (tmp_path / "p.pddl").write_text(problem_text)
+    outputs = []
+    for hash_seed in ("1", "2"):
+        env = {**os.environ, "PYTHONHASHSEED": hash_seed}
+        done = subprocess.run(
+            [sys.executable, "-c", "from btplan.cli import main; main()",
+             "plan", "d.pddl", "p.pddl", "-f", "json"],
+            cwd=tmp_path, env=env, capture_output=True, text=True, check=True)
+        outputs.append(done.stdout)
+    assert outputs[0] == outputs[1] and outputs[0].startswith("{")
