@@ -167,3 +167,28 @@ def test_an_event_condition_must_be_a_predicate_of_the_domain(tmp_path: Path) ->
     assert "is not a condition of the domain" in caught.value.message
     assert caught.value.hint == "did you mean 'holding'?"
     assert caught.value.source_line == 'when = "holdng(green)"'
+
+
+def test_a_cube_put_on_the_path_ahead_stops_a_running_move(room: PyBulletWorld) -> None:
+    from btplan.bt import FAILURE
+
+    name = trajectory_to(room, "goal")
+    key = ("MoveTo", ("goal", name))
+    assert room.start(key) is RUNNING
+    path = room.trajectories[name].path
+    ahead = path[int(len(path) * 0.6)]
+    room.put("red", (ahead[0], ahead[1]))
+    assert not room.check(("free", (name,)))
+    assert room.step(key) is FAILURE
+    assert [a.key for a in room.failed] == [key]
+
+
+def test_the_same_seed_plans_the_same_path() -> None:
+    paths = []
+    for _ in range(2):
+        world = open_world(TASK, str(YOUBOT_SCENE), seed=11)
+        try:
+            paths.append(world.trajectories[trajectory_to(world, "goal")].path)
+        finally:
+            world.close()
+    assert paths[0] == paths[1]
