@@ -14,10 +14,11 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from btplan.blend import BlendedLoop, Expansion, TickReport
-from btplan.bt import BehaviorTree, Node, Status
+from btplan.bt import FAILURE, BehaviorTree, Node, Status
 from btplan.bt.trace import TickRecorder
 from btplan.errors import PlanningError
 from btplan.model import Atom, GroundAction, Task
+from btplan.planner import PlannerOptions
 from btplan.trace import ExpansionNote, RunSummary, TickRecord, summarize
 from btplan.worlds.agents import Agent, act_all, agents_from_specs, check_world
 from btplan.worlds.disturb import DisturbSpec, check_specs, parse_spec
@@ -132,6 +133,7 @@ def run_task(
     view: TickView | None = None,
     rate: float | None = None,
     failure_probability: Mapping[str, float] | None = None,
+    options: PlannerOptions | None = None,
 ) -> RunOutcome:
     """Plan and act at once (Algorithm 1) in `world`, with `agents` acting before each tick.
 
@@ -140,15 +142,17 @@ def run_task(
     """
     if world is None:
         world = SymbolicWorld(task, seed=seed, failure_probability=failure_probability)
-    loop = BlendedLoop(task, world)
+    loop = BlendedLoop(task, world, options)
     observer = _Observer(world, agents, loop.tree, view, rate)
     try:
         outcome = loop.run(max_ticks, before_tick=observer.before, on_tick=observer.after)
         reached, reason = outcome.reached, outcome.reason
     except PlanningError as error:
         # The tree cannot grow any further (no achiever, going round in circles): the run
-        # ends as not reached, and its records still tell how it got there.
+        # ends as not reached, and its records, this last tick included, tell why.
         reached, reason = False, error.reason
+        if not observer.records or observer.records[-1].tick != loop.ticks:
+            observer.after(TickReport(loop.ticks, FAILURE))
     finally:
         observer.recorder.detach(loop.tree)
     return RunOutcome(reached=reached, reason=reason, tree=loop.tree, world=world,
@@ -166,13 +170,15 @@ def run(
     view: TickView | None = None,
     rate: float | None = None,
     failure_probability: Mapping[str, float] | None = None,
+    options: PlannerOptions | None = None,
 ) -> RunOutcome:
     """Run `task` in a world with disturbances: the library form of `btplan run`.
 
     `disturb` holds specs such as `"undo@5"` or `"set:blocked(tau_goal)@p=0.05"`
     (syntax in docs/cli.md), checked against the task first; `agents` are any other
     agents (a simulator's scripted events). Returns the outcome with one record per
-    tick; raises InputError for a bad spec.
+    tick; raises InputError for a bad spec. `options` are the planner's
+    (`PlannerOptions.paper()` for the published algorithms).
     """
     specs = [parse_spec(s) if isinstance(s, str) else s for s in disturb]
     check_specs(specs, task)
@@ -180,4 +186,5 @@ def run(
         check_world(specs, world, type(world).__name__)
     everyone = [*agents_from_specs(specs, seed), *agents]
     return run_task(task, world=world, agents=everyone, seed=seed, max_ticks=max_ticks,
-                    view=view, rate=rate, failure_probability=failure_probability)
+                    view=view, rate=rate, failure_probability=failure_probability,
+                    options=options)
