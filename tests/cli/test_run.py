@@ -131,3 +131,22 @@ def test_a_pybullet_run_acts_with_the_scene_agents(tmp_path: Path) -> None:
     assert kinds, "the scene's scripted agents should have acted"
     assert lines[-1]["status"] == "SUCCESS"
     assert any(e["condition"].startswith("free(") for line in lines for e in line["expansions"])
+
+
+def test_on_a_terminal_the_live_view_draws_the_tree(monkeypatch: pytest.MonkeyPatch) -> None:
+    from io import StringIO
+
+    from rich.console import Console
+
+    import btplan.cli.run as run_command
+
+    screen = StringIO()
+    terminal = Console(file=screen, force_terminal=True, width=100, color_system=None)
+    monkeypatch.setattr(run_command, "stderr", terminal)
+    result = runner.invoke(app, ["run", PICK_PLACE, "--disturb", "undo:Pick@11"])
+    assert result.exit_code == 0, result.output
+    shown = screen.getvalue()
+    assert "tick 17  SUCCESS" in shown
+    assert "[Place(cube, goal)]  SUCCESS" in shown
+    assert "undid Pick(cube)" in shown
+    assert "goal reached" in shown
