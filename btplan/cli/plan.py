@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from dataclasses import replace
 from enum import Enum
 from pathlib import Path
 from typing import Annotated
@@ -16,6 +17,7 @@ from btplan.bt.formats import dump
 from btplan.cli.app import app, guarded, stderr
 from btplan.errors import InputError, Span
 from btplan.io import STDIO, write_atomic
+from btplan.planner import PlannerOptions
 
 
 class Format(str, Enum):
@@ -49,11 +51,20 @@ def plan_command(
     max_expansions: Annotated[int, typer.Option(help="Give up after this many expansions.")
                               ] = 1000,
     max_ticks: Annotated[int, typer.Option(help="Give up after this many ticks.")] = 100_000,
+    max_alternatives: Annotated[int | None, typer.Option(
+        help="Achievers kept per condition (default 4, widened once if planning fails).",
+        show_default=False)] = None,
+    paper: Annotated[bool, typer.Option(
+        "--paper", help="Algorithms 1-3 exactly as published, without btplan's extensions.")
+    ] = False,
     timeout: Annotated[float | None, typer.Option(
         help="Give up after this many seconds.", show_default=False)] = None,
 ) -> None:
     """Build a reactive BT for the problem by planning and acting in the symbolic world."""
-    for name, value in (("--max-expansions", max_expansions), ("--max-ticks", max_ticks)):
+    limits = [("--max-expansions", max_expansions), ("--max-ticks", max_ticks)]
+    if max_alternatives is not None:
+        limits.append(("--max-alternatives", max_alternatives))
+    for name, value in limits:
         if value < 1:
             raise InputError(f"{name} must be at least 1, got {value}")
     if timeout is not None and timeout <= 0:
@@ -71,8 +82,11 @@ def plan_command(
         write_atomic(f"{stem}.dot", dump(tree, "dot"))
         write_atomic(f"{stem}.json", dump(tree, "json"))
 
+    options = PlannerOptions.paper() if paper else None
+    if max_alternatives is not None:
+        options = replace(options or PlannerOptions(), max_alternatives=max_alternatives)
     result = plan(task, seed=seed, max_expansions=max_expansions, max_ticks=max_ticks,
-                  timeout=timeout, on_expansion=trace)
+                  timeout=timeout, options=options, on_expansion=trace)
     text = dump(result.tree, chosen)
     write_atomic(out, text if text.endswith("\n") else text + "\n")
     if plan_out is not None:

@@ -146,3 +146,11 @@ def test_output_does_not_depend_on_the_hash_seed(tmp_path: Path) -> None:
             cwd=tmp_path, env=env, capture_output=True, text=True, check=True)
         outputs.append(done.stdout)
     assert outputs[0] == outputs[1] and outputs[0].startswith("{")
+
+
+def test_paper_mode_and_alternatives_are_options() -> None:
+    sussman = str(DOMAINS / "planner_sussman.bt")
+    assert runner.invoke(app, ["plan", sussman, "--max-alternatives", "2"]).exit_code == 0
+    paper = runner.invoke(app, ["plan", sussman, "--paper"])
+    assert paper.exit_code == 1 and "conflict" in paper.stderr
+    assert runner.invoke(app, ["plan", sussman, "--max-alternatives", "0"]).exit_code == 2
