@@ -42,7 +42,7 @@ class MoveTo:
 
     def step(self, world: PyBulletWorld) -> Status:
         path = self.traj.path
-        if world.path_blockers(self.traj, self.index):
+        if not path or world.path_blockers(self.traj, self.index):
             return self.stop(FAILURE)
         self.index = min(self.index + world.waypoints_per_tick, len(path) - 1)
         world.move_base(path[self.index])

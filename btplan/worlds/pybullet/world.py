@@ -29,7 +29,6 @@ Key = tuple[str, tuple[str, ...]]
 STEP = 0.05          # metres between waypoints of a path
 PLAN_BUDGET = 1.0    # seconds OMPL may take for a path that avoids walls only
 DETOUR_BUDGET = 0.1  # seconds for a path that also avoids the movable cubes
-GRID = 0.25          # metres between candidate placement poses
 
 
 class PyBulletWorld:
@@ -335,7 +334,8 @@ class PyBulletWorld:
         if name == "Pick" and len(args) == 1:
             return Pick(self, args[0])
         if name == "Place" and len(args) == 2:
-            return Release(self, args[0], samplers.place_spot(self, args[1]) if self.is_near(args[1]) else None)
+            spot = samplers.place_spot(self, args[1]) if self.is_near(args[1]) else None
+            return Release(self, args[0], spot)
         if name == "ClearPath" and len(args) == 3 and args[1] in self.poses:
             if self.held is not None or not self.is_near(args[0]):
                 return None
