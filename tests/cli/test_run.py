@@ -150,3 +150,17 @@ def test_on_a_terminal_the_live_view_draws_the_tree(monkeypatch: pytest.MonkeyPa
     assert "[Place(cube, goal)]  SUCCESS" in shown
     assert "undid Pick(cube)" in shown
     assert "goal reached" in shown
+
+
+def test_the_example_2_scenario_grows_the_tree_once_and_survives_the_undo(tmp_path: Path) -> None:
+    trace = tmp_path / "example2.jsonl"
+    result = runner.invoke(app, ["run", str(DOMAINS / "pick_place_obstacle.bt"), "--scenario",
+                                 str(DOMAINS.parent / "examples" / "example2.dist"), "--quiet",
+                                 "--trace", str(trace)])
+    assert result.exit_code == 0, result.output
+    lines = [json.loads(line) for line in trace.read_text().splitlines()]
+    grown = {line["tick"]: [e["condition"] for e in line["expansions"]] for line in lines
+             if line["expansions"]}
+    assert grown[8] == ["free(tau_goal)"]
+    assert max(grown) < 20, "the undo at tick 20 must not expand the tree"
+    assert [d["kind"] for line in lines for d in line["disturbances"]] == ["set", "clear", "undo"]
