@@ -131,6 +131,11 @@ class ClearPath:
         self.stage = 0
         world.clearing_now = cube
 
+    @property
+    def doing(self) -> str:
+        """What the robot is doing within the action, for the recorded frames."""
+        return ("picking", "carrying", "putting down")[self.stage]
+
     def step(self, world: PyBulletWorld) -> Status:
         status = self.phase.step(world)
         if status is RUNNING:

@@ -311,8 +311,10 @@ class PyBulletWorld:
         if skill is None:
             return FAILURE
         self.action_ticks += 1
-        self.current = f"{key[0]}({', '.join(key[1])})"
         status = skill.step(self)
+        self.current = f"{key[0]}({', '.join(key[1])})"
+        if isinstance(skill, ClearPath):
+            self.current += f": {skill.doing} {skill.cube}"
         if status is not RUNNING:
             del self.running[key]
             log = self.failed if status is FAILURE else self.executed
