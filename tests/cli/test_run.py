@@ -164,3 +164,26 @@ def test_the_example_2_scenario_grows_the_tree_once_and_survives_the_undo(tmp_pa
     assert grown[8] == ["free(tau_goal)"]
     assert max(grown) < 20, "the undo at tick 20 must not expand the tree"
     assert [d["kind"] for line in lines for d in line["disturbances"]] == ["set", "clear", "undo"]
+
+
+def test_the_same_seed_gives_the_same_trace_in_any_process(tmp_path: Path) -> None:
+    """Byte-identical traces even when Python's string hashing differs between processes."""
+    import os
+    import subprocess
+    import sys
+
+    texts = []
+    for hash_seed in ("1", "2"):
+        trace = tmp_path / f"run{hash_seed}.jsonl"
+        subprocess.run(
+            [sys.executable, "-c", "from btplan.cli import main; main()", "run",
+             str(DOMAINS / "pick_place_obstacle.bt"), "--quiet", "--seed", "5",
+             "--disturb", "undo@p=0.1", "--disturb", "help@p=0.05",
+             "--scenario", str(DOMAINS.parent / "examples" / "example2.dist"),
+             "--trace", str(trace)],
+            env={**os.environ, "PYTHONHASHSEED": hash_seed}, capture_output=True, check=True)
+        texts.append(trace.read_text())
+    assert texts[0] == texts[1]
+    kinds = [d["kind"] for line in texts[0].splitlines()
+             for d in json.loads(line)["disturbances"]]
+    assert {"set", "clear", "undo", "help"} <= set(kinds)
