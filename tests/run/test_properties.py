@@ -32,6 +32,11 @@ def expansions_from(result: RunOutcome, tick: int) -> list[str]:
     return [e.condition for t, e in result.summary().expansions if t >= tick]
 
 
+def shape(result: RunOutcome) -> list[tuple[str, str]]:
+    """The final tree as (kind, name) in depth-first order."""
+    return [(n.kind, n.name) for n in result.tree.nodes()]
+
+
 def test_undo_the_robot_picks_the_cube_again_without_expanding() -> None:
     """Property 1: the cube is taken from the hand just before Place; the robot fetches it again."""
     calm = run(PICK_PLACE)
@@ -46,6 +51,7 @@ def test_undo_the_robot_picks_the_cube_again_without_expanding() -> None:
         "MoveTo(cube, tau_cube)", "Pick(cube)", "MoveTo(goal, tau_goal)", "Place(cube, goal)"]
     assert expansions_from(result, at) == []
     assert expanded(result) == expanded(calm)
+    assert shape(result) == shape(calm)
 
 
 def test_help_pick_and_its_move_are_skipped_without_expanding() -> None:
@@ -61,6 +67,7 @@ def test_help_pick_and_its_move_are_skipped_without_expanding() -> None:
     assert set(expanded(result)) <= set(expanded(calm))
     assert len(expanded(result)) <= len(expanded(calm))
     assert "holding(cube)" not in expansions_from(result, at)
+    assert len(result.tree.nodes()) <= len(calm.tree.nodes())
 
 
 def test_alternatives_the_second_achiever_runs_when_the_first_fails() -> None:
