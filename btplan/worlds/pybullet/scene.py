@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import re
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from difflib import get_close_matches
 from pathlib import Path
 from typing import Any
 
@@ -92,7 +93,6 @@ class Scene:
     robot_radius: float = 0.4
     cube_size: float = 0.12
     near: float = 0.75
-    extra: dict[str, Any] = field(default_factory=dict)
 
     def region(self, name: str) -> Region | None:
         return next((r for r in self.regions if r.name == name), None)
@@ -100,6 +100,16 @@ class Scene:
 
 _TOML_AT = re.compile(r"\(at line (\d+), column (\d+)\)")
 DO = ("move", "remove", "slip")
+KEYS: dict[str, tuple[str, ...]] = {
+    "": ("world", "robot", "wall", "cube", "region", "event"),
+    "world": ("bounds", "tick_seconds", "speed", "cube_size"),
+    "robot": ("start", "radius", "near"),
+    "wall": ("name", "center", "size", "height"),
+    "cube": ("name", "at", "color"),
+    "region": ("name", "min", "max", "aside", "color"),
+    "event": ("name", "when", "tick", "count", "delay", "do", "cube", "to"),
+}
+"""The keys each table may have; anything else is a typo worth reporting."""
 _LITERAL = re.compile(r"^\s*(not\s+)?[A-Za-z_]\w*\s*(\(\s*(\w+\s*(,\s*\w+\s*)*)?\))?\s*$")
 
 
@@ -142,6 +152,36 @@ class _Reader:
             raise self.fail(f"'{key}' must be a list of {n} numbers", key)
         return tuple(float(v) for v in value)
 
+    def scalar(self, table: dict[str, Any], key: str, default: float, whole: bool = False,
+               least: float = 0.0) -> float:
+        """A number (an integer if `whole`) of at least `least`, or the default when absent."""
+        value = table.get(key, default)
+        kinds = int if whole else int | float
+        if isinstance(value, bool) or not isinstance(value, kinds) or value < least:
+            what = "a whole number" if whole else "a number"
+            raise self.fail(f"'{key}' must be {what} of at least {least:g}", key, f"got {value!r}")
+        return float(value)
+
+    def known(self, table: object, kind: str) -> dict[str, Any]:
+        """The table itself, after checking it is one and has no unknown keys."""
+        if not isinstance(table, dict):
+            raise self.fail(f"'{kind}' must be a table", kind)
+        allowed = KEYS[kind]
+        for key in sorted(table):
+            if key not in allowed:
+                near = get_close_matches(key, allowed, n=1)
+                where = f"[{kind}]" if kind else "the scene"
+                raise self.fail(f"unknown key '{key}' in {where}", key,
+                                f"did you mean '{near[0]}'?" if near else
+                                f"expected one of {', '.join(allowed)}")
+        return table
+
+    def tables(self, data: dict[str, Any], kind: str) -> list[dict[str, Any]]:
+        items = data.get(kind, [])
+        if not isinstance(items, list):
+            raise self.fail(f"write [[{kind}]] for each {kind}", kind)
+        return [self.known(t, kind) for t in items]
+
     def point(self, value: object, key: str) -> Point:
         x, y = self.numbers(value, 2, key)
         return (x, y)
@@ -157,33 +197,34 @@ class _Reader:
         return name
 
     def scene(self, data: dict[str, Any]) -> Scene:
-        world = data.get("world", {})
-        robot = data.get("robot", {})
+        self.known(data, "")
+        world = self.known(data.get("world", {}), "world")
+        robot = self.known(data.get("robot", {}), "robot")
         if "bounds" not in world:
             raise self.fail("the scene needs [world] bounds = [x_min, x_max, y_min, y_max]", "[world]")
         x0, x1, y0, y1 = self.numbers(world["bounds"], 4, "bounds")
         sx, sy, syaw = self.numbers(robot.get("start", [0.0, 0.0, 0.0]), 3, "start")
-        cubes = tuple(self.cube(t) for t in data.get("cube", []))
+        cubes = tuple(self.cube(t) for t in self.tables(data, "cube"))
         scene = Scene(
             path=self.path,
             bounds=(x0, x1, y0, y1),
             start=(sx, sy, syaw),
-            walls=tuple(self.wall(t) for t in data.get("wall", [])),
+            walls=tuple(self.wall(t) for t in self.tables(data, "wall")),
             cubes=cubes,
-            regions=tuple(self.region(t) for t in data.get("region", [])),
-            events=tuple(self.event(t, {c.name for c in cubes}) for t in data.get("event", [])),
-            tick_seconds=float(world.get("tick_seconds", 0.1)),
-            speed=float(world.get("speed", 1.0)),
-            robot_radius=float(robot.get("radius", 0.4)),
-            cube_size=float(world.get("cube_size", 0.12)),
-            near=float(robot.get("near", 0.75)),
+            regions=tuple(self.region(t) for t in self.tables(data, "region")),
+            events=tuple(self.event(t, {c.name for c in cubes}) for t in self.tables(data, "event")),
+            tick_seconds=self.scalar(world, "tick_seconds", 0.1, least=0.001),
+            speed=self.scalar(world, "speed", 1.0, least=0.01),
+            robot_radius=self.scalar(robot, "radius", 0.4, least=0.05),
+            cube_size=self.scalar(world, "cube_size", 0.12, least=0.01),
+            near=self.scalar(robot, "near", 0.75, least=0.05),
         )
         self.check_names(scene)
         return scene
 
     def wall(self, t: dict[str, Any]) -> Box:
         return Box(self.name(t, "wall"), self.point(t.get("center"), "center"),
-                   self.point(t.get("size"), "size"), float(t.get("height", 0.4)))
+                   self.point(t.get("size"), "size"), self.scalar(t, "height", 0.4, least=0.01))
 
     def cube(self, t: dict[str, Any]) -> CubeSpec:
         at = self.point(t["at"], "at") if "at" in t else None
@@ -214,8 +255,10 @@ class _Reader:
         to = self.point(t["to"], "to") if "to" in t else None
         if do == "move" and to is None:
             raise self.fail(f"event '{name}': a move needs 'to = [x, y]'", name)
-        return Event(name, do, cube, to, t.get("tick"), t.get("when"),
-                     int(t.get("count", 1)), int(t.get("delay", 0)))
+        tick = int(self.scalar(t, "tick", 0, whole=True)) if "tick" in t else None
+        count = int(self.scalar(t, "count", 1, whole=True, least=1))
+        delay = int(self.scalar(t, "delay", 0, whole=True))
+        return Event(name, do, cube, to, tick, when, count, delay)
 
     def check_names(self, scene: Scene) -> None:
         seen: set[str] = set()

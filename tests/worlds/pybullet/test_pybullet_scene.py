@@ -70,3 +70,29 @@ def test_an_unreadable_event_condition_is_located(tmp_path: Path) -> None:
     assert "cannot read the condition" in error.message
     assert error.span is not None and error.span.line == OPEN_ROOM.count("\n") + 4
     assert error.source_line == 'when = "holding(green"'
+
+
+def test_a_misspelt_key_is_reported_with_the_likely_one(tmp_path: Path) -> None:
+    text = OPEN_ROOM.replace('name = "green"', 'name = "green"\ncolour = [0, 1, 0]')
+    with pytest.raises(InputError) as caught:
+        load_scene(write_scene(tmp_path, text))
+    assert caught.value.message == "unknown key 'colour' in [cube]"
+    assert caught.value.hint == "did you mean 'color'?"
+    assert caught.value.source_line == "colour = [0, 1, 0]"
+
+
+@pytest.mark.parametrize(("extra", "message"), [
+    ('\n[[event]]\nname = "e"\ntick = 2\ndelay = "soon"\ndo = "remove"\ncube = "red"\n',
+     "'delay' must be a whole number of at least 0"),
+    ('\n[[event]]\nname = "e"\ntick = 2\ncount = 0\ndo = "remove"\ncube = "red"\n',
+     "'count' must be a whole number of at least 1"),
+])
+def test_event_numbers_are_checked(tmp_path: Path, extra: str, message: str) -> None:
+    with pytest.raises(InputError, match=message):
+        load_scene(write_scene(tmp_path, OPEN_ROOM + extra))
+
+
+def test_robot_sizes_must_be_positive(tmp_path: Path) -> None:
+    text = OPEN_ROOM.replace("start = [0.0, 0.0, 0.0]", "start = [0.0, 0.0, 0.0]\nradius = -1")
+    with pytest.raises(InputError, match="'radius' must be a number of at least 0.05"):
+        load_scene(write_scene(tmp_path, text))
