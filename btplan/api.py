@@ -47,6 +47,7 @@ class PlanStats:
     ticks: int
     rounds: int
     seconds: float
+    premature_successes: int = 0
 
 
 @dataclass
@@ -81,14 +82,23 @@ def plan(
     deadline = None if timeout is None else started + timeout
     strategies = [opts] if options is not None else fallback_strategies(opts)
     first_error: PlanningError | None = None
+    found: PlanResult | None = None
     for strategy in strategies:
         try:
-            return _attempt(task, seed, strategy, max_ticks, deadline, timeout, on_expansion,
-                            started)
+            result = _attempt(task, seed, strategy, max_ticks, deadline, timeout, on_expansion,
+                              started)
         except BudgetExceededError:
+            if found is not None:
+                return found
             raise
         except PlanningError as error:
             first_error = first_error or error
+            continue
+        if result.stats.premature_successes == 0:
+            return result
+        found = found or result
+    if found is not None:
+        return found
     assert first_error is not None
     raise first_error
 
@@ -98,8 +108,10 @@ def fallback_strategies(options: PlannerOptions) -> list[PlannerOptions]:
 
     Backchaining commits to the achievers it ranked best in the state it expanded
     in; when that leads nowhere, starting over with more alternatives per condition,
-    or with the paper's own priority moves only, often does. Deterministic: always the
-    same list, in the same order.
+    or with the paper's own priority moves only, often does. The next strategy is also
+    tried when the tree's last run succeeded once with the goal still false (later work
+    undid a goal within one tick); if none does better, the first tree is returned.
+    Deterministic: always the same list, in the same order.
     """
     return [
         options,
@@ -137,6 +149,7 @@ def _attempt(
             world = SymbolicWorld(task, seed=seed)
             loop.use_world(world)
         ticks_before = loop.ticks
+        premature_before = loop.premature_successes
         try:
             result = loop.run(ticks_left, on_tick=watch)
         except _Restart:
@@ -149,7 +162,8 @@ def _attempt(
             return PlanResult(
                 tree=loop.tree,
                 executed=list(world.executed),
-                stats=_stats(loop, world, rounds, time.perf_counter() - started),
+                stats=_stats(loop, world, rounds, time.perf_counter() - started,
+                             loop.premature_successes - premature_before),
                 expansions=list(loop.expansions),
             )
     raise PlanningError(
@@ -162,7 +176,9 @@ class _Restart(Exception):
     """A subtree moved: start the world afresh from the initial state."""
 
 
-def _stats(loop: BlendedLoop, world: SymbolicWorld, rounds: int, seconds: float) -> PlanStats:
+def _stats(
+    loop: BlendedLoop, world: SymbolicWorld, rounds: int, seconds: float, premature: int
+) -> PlanStats:
     return PlanStats(
         expansions=len(loop.expansions),
         conflicts_resolved=sum(e.conflicts_resolved for e in loop.expansions),
@@ -172,4 +188,5 @@ def _stats(loop: BlendedLoop, world: SymbolicWorld, rounds: int, seconds: float)
         ticks=loop.ticks,
         rounds=rounds,
         seconds=seconds,
+        premature_successes=premature,
     )

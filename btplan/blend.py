@@ -11,7 +11,12 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from btplan.bt import FAILURE, SUCCESS, Action, BehaviorTree, Fallback, LeafKey, Node, Status
-from btplan.errors import BudgetExceededError, NoAchieverError, NoProgressError
+from btplan.errors import (
+    BudgetExceededError,
+    NoAchieverError,
+    NoProgressError,
+    UnresolvableConflictError,
+)
 from btplan.model import Atom, GroundAction, GroundLiteral, Task
 from btplan.planner import (
     AchieverIndex,
@@ -82,6 +87,7 @@ class BlendedLoop:
         self._seen: set[tuple[frozenset[Atom], int]] = set()
         self._last_state: frozenset[Atom] | None = None
         self._stalls = 0
+        self.premature_successes = 0
 
     def use_world(self, world: PlanningWorld) -> None:
         """Keep the tree and continue against another world (a fresh run from the start)."""
@@ -166,24 +172,45 @@ class BlendedLoop:
                     f"the expansion budget ({self.options.max_expansions}) ran out "
                     f"while {literal} still fails"
                 )
-            added = self._append_alternatives(fallback, fresh)
-            if added:
-                return self._record(literal, added, 0, 0)
+            grown = self._append_alternatives(fallback, fresh)
+            if grown is not None:
+                added, conflicts, moves = grown
+                return self._record(literal, added, conflicts, moves)
         return None
 
     def _append_alternatives(
         self, fallback: Fallback, actions: list[GroundAction]
-    ) -> list[GroundAction]:
-        added: list[GroundAction] = []
+    ) -> tuple[list[GroundAction], int, int] | None:
+        """Append achievers to an expanded condition's fallback, as ExpandTree would.
+
+        New alternatives that conflict are dropped if others do not; if all do, the
+        fallback is moved like a new subtree (the goal order may have to change now);
+        if no place is free of conflicts, nothing is added.
+        """
+        judge = self._judge()
+        appended: list[tuple[GroundAction, Node]] = []
         for action in actions[: self.options.max_alternatives]:
             self.grounding[action.key] = action
             alternative = achiever_sequence(action, self.task)
             fallback.append(alternative)
-            if alternative_conflicts(fallback, alternative, self._judge()):
-                fallback.remove(alternative)
-            else:
-                added.append(action)
-        return added
+            appended.append((action, alternative))
+        clean = [(a, n) for a, n in appended if not alternative_conflicts(fallback, n, judge)]
+        if clean:
+            for action, node in appended:
+                if (action, node) not in clean:
+                    fallback.remove(node)
+            return [a for a, _ in clean], 0, 0
+        if not appended or not self.options.reorder_goals:
+            for _, node in appended:
+                fallback.remove(node)
+            return None
+        try:
+            resolution = resolve_conflicts(self.tree, fallback, judge, True, False)
+        except UnresolvableConflictError:
+            for _, node in appended:
+                fallback.remove(node)
+            return None
+        return [a for a, _ in appended], len(resolution.conflicts), resolution.moves
 
     def _record(
         self, literal: GroundLiteral, achievers: list[GroundAction], conflicts: int, moves: int
@@ -262,8 +289,11 @@ class BlendedLoop:
             report = self.tick()
             if on_tick is not None:
                 on_tick(report)
-            if report.status is SUCCESS and self.goal_holds():
-                return RunResult(True, i + 1, self.expansions[start:], self.tree, "goal reached")
+            if report.status is SUCCESS:
+                if self.goal_holds():
+                    return RunResult(True, i + 1, self.expansions[start:], self.tree,
+                                     "goal reached")
+                self.premature_successes += 1
         return RunResult(
             False, max_ticks, self.expansions[start:], self.tree,
             f"the goal was not reached within {max_ticks} ticks",
