@@ -79,9 +79,8 @@ class AchieverIndex:
                 action = instantiate(template, args)
                 if _makes_true(action, condition) and action.key not in found:
                     found[action.key] = action
-        ranked = sorted(found.values(), key=lambda a: self._rank(a, state))
-        if self.options.heuristic:
-            ranked = [a for a in ranked if self._rank(a, state)[0] < math.inf]
+        scored = sorted((self._rank(a, state), a) for a in found.values())
+        ranked = [a for score, a in scored if score[0] < math.inf]
         return ranked[: limit or self.options.max_alternatives]
 
     def _rank(self, action: GroundAction, state: frozenset[Atom]) -> tuple[float, int, str]:
