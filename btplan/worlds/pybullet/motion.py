@@ -44,9 +44,16 @@ def release() -> None:
     gc.collect()
 
 
+_seeded: list[int] = []
+"""The seed given to OMPL in this process. OMPL's seed is process-wide and only the first
+one counts (later calls log an error and change nothing), so it is given once."""
+
+
 def seed_rng(seed: int) -> None:
-    """Seed OMPL's sampler; must happen before the first planner is created."""
-    _ompl("util").RNG.setSeed(seed)
+    """Seed OMPL's sampler for this process: the first world opened fixes the sequence."""
+    if not _seeded:
+        _ompl("util").RNG.setSeed(seed)
+        _seeded.append(seed)
 
 
 def plan_se2(
