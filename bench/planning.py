@@ -33,9 +33,9 @@ from btplan.lang.generators import generate
 from btplan.model import Task
 
 SIZES = {
-    "blocksworld": [4, 6, 8, 10, 12, 15, 20],
-    "gripper": [2, 4, 8, 12, 16, 20],
-    "logistics": [1, 2, 3, 4, 6, 8],
+    "blocksworld": [4, 6, 8, 10, 12, 15, 20, 25],
+    "gripper": [2, 4, 8, 12, 16, 20, 30],
+    "logistics": [1, 2, 3, 4, 6, 8, 10, 12],
 }
 SIZE_WORD = {"blocksworld": "blocks", "gripper": "balls", "logistics": "packages"}
 
