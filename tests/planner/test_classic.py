@@ -11,7 +11,7 @@ from btplan.api import load, plan
 from btplan.bt import SUCCESS
 from btplan.model import GroundAction, Task
 from btplan.worlds.symbolic import SymbolicWorld
-from tests.planner.helpers import DOMAINS
+from tests.planner.shapes import DOMAINS
 
 
 def validate(task: Task, actions: list[GroundAction]) -> None:

@@ -6,7 +6,7 @@ from btplan.blend import BlendedLoop
 from btplan.lang import load
 from btplan.model import Atom
 from btplan.worlds.symbolic import SymbolicWorld
-from tests.planner.helpers import DOMAINS, shape
+from tests.planner.shapes import DOMAINS, shape
 
 MOVE_CUBE = ("?", "near(cube)", ("->", "free(tau_cube)", "[MoveTo(cube, tau_cube)]"))
 HOLD_CUBE = ("?", "holding(cube)", ("->", MOVE_CUBE, "hand_empty", "[Pick(cube)]"))

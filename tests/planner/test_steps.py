@@ -18,7 +18,7 @@ from btplan.planner import (
 )
 from btplan.planner.expand import condition_node, expand_tree, initial_tree
 from btplan.worlds.symbolic import SymbolicWorld
-from tests.planner.helpers import DOMAINS, shape
+from tests.planner.shapes import DOMAINS, shape
 
 
 def lit(text: str, positive: bool = True) -> GroundLiteral:

@@ -6,7 +6,7 @@ from btplan.bt import FAILURE, RUNNING, SUCCESS
 from btplan.lang import load
 from btplan.model import Atom
 from btplan.worlds.symbolic import SymbolicWorld
-from tests.planner.helpers import DOMAINS
+from tests.planner.shapes import DOMAINS
 
 
 def world(**kwargs: object) -> SymbolicWorld:

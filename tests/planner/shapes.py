@@ -1,4 +1,4 @@
-"""Shared helpers for planner tests: tree shapes as nested tuples, easy to compare."""
+"""Tree shapes as nested tuples, easy to compare, and where the shipped domains live."""
 
 from __future__ import annotations
 
