@@ -27,7 +27,6 @@ from btplan.planner import PlannerOptions
 from btplan.worlds.symbolic import SymbolicWorld
 
 DEFAULT_MAX_TICKS = 100_000
-DEFAULT_MAX_ROUNDS = 64
 
 
 def load(*paths: str, problem: str | None = None) -> Task:
@@ -144,7 +143,9 @@ def _attempt(
         if any(e.moves for e in report.expansions):
             raise _Restart(report.tick)
 
-    for rounds in range(1, DEFAULT_MAX_ROUNDS + 1):
+    # Every run but the last expands at least once, so the expansion budget bounds them.
+    max_rounds = opts.max_expansions + 1
+    for rounds in range(1, max_rounds + 1):
         if rounds > 1:
             world = SymbolicWorld(task, seed=seed)
             loop.use_world(world)
@@ -167,7 +168,7 @@ def _attempt(
                 expansions=list(loop.expansions),
             )
     raise PlanningError(
-        f"after {DEFAULT_MAX_ROUNDS} runs from the initial state the tree still needed "
+        f"after {max_rounds} runs from the initial state the tree still needed "
         "expansions; the order it found depends on the state it was built in"
     )
 
