@@ -126,7 +126,7 @@ class BlendedLoop:
 
     def _expand(self) -> Expansion | None:
         state = self.world.facts()
-        missing: list[str] = []
+        missing: list[GroundLiteral] = []
         for node in failed_conditions(self.tree, self._expanded):
             literal = literal_of(node)
             assert literal is not None
@@ -136,17 +136,30 @@ class BlendedLoop:
             self._expanded.add(node)
             if not achievers:
                 self._dead.add(node)
-                missing.append(str(literal))
+                missing.append(literal)
                 continue
             return self._apply(node, literal, achievers)
         more = self._reexpand(state) if self.options.refine_more else None
         if more is not None:
             return more
         if missing:
-            raise NoAchieverError(
-                "no action can make " + " or ".join(sorted(set(missing))) + " hold"
-            )
+            raise NoAchieverError(self._no_achiever_reason(missing))
         return None
+
+    def _no_achiever_reason(self, missing: list[GroundLiteral]) -> str:
+        never = sorted({str(c) for c in missing if not self.index.has_effect(c)})
+        lost = sorted({str(c) for c in missing if self.index.has_effect(c)})
+        parts = []
+        if never:
+            parts.append("no action can make " + " or ".join(never) + " hold")
+        if lost:
+            recent = [str(a) for a in getattr(self.world, "executed", [])[-4:]]
+            parts.append(
+                " and ".join(lost) + " cannot be reached any more from the current state"
+                " (every action achieving it needs something no action can bring about)"
+                + (f"; last actions: {', '.join(recent)}" if recent else "")
+            )
+        return "; ".join(parts)
 
     def _reexpand(self, state: frozenset[Atom]) -> Expansion | None:
         """Give a failed, already expanded condition the achievers that apply now.

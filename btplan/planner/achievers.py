@@ -47,6 +47,10 @@ class AchieverIndex:
             self._relaxed = RelaxedModel(self.task)
         return self._relaxed
 
+    def has_effect(self, condition: GroundLiteral) -> bool:
+        """Whether any action template has an effect of this predicate and sign."""
+        return bool(self._by_effect.get((condition.atom.predicate, condition.positive)))
+
     @property
     def mutexes(self) -> Mutexes:
         """h^2 mutexes from the initial state, built on first use."""
