@@ -155,9 +155,9 @@ class BlendedLoop:
         if lost:
             recent = [str(a) for a in getattr(self.world, "executed", [])[-4:]]
             parts.append(
-                " and ".join(lost) + " cannot be reached any more from the current state"
-                " (every action achieving it needs something no action can bring about)"
-                + (f"; last actions: {', '.join(recent)}" if recent else "")
+                "no action can make " + " or ".join(lost) + " hold from the current state:"
+                " every action achieving it needs something no action can bring about"
+                + (f" (last actions: {', '.join(recent)})" if recent else "")
             )
         return "; ".join(parts)
 
