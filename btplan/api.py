@@ -20,7 +20,7 @@ from dataclasses import dataclass, field, replace
 from btplan.acting import RunOutcome as RunOutcome  # noqa: PLC0414
 from btplan.acting import run as run  # noqa: PLC0414
 from btplan.blend import BlendedLoop, Expansion, TickReport
-from btplan.bt import BehaviorTree
+from btplan.bt import BehaviorTree, LeafKey
 from btplan.errors import BudgetExceededError, PlanningError
 from btplan.model import GroundAction, Task
 from btplan.planner import PlannerOptions
@@ -130,7 +130,8 @@ def _attempt(
     started: float,
 ) -> PlanResult:
     """Rounds of Algorithm 1 from the initial state until one needs no expansion."""
-    world = SymbolicWorld(task, seed=seed)
+    groundings: dict[LeafKey, GroundAction] = {}
+    world = SymbolicWorld(task, seed=seed, groundings=groundings)
     loop = BlendedLoop(task, world, opts)
     ticks_left = max_ticks
 
@@ -147,7 +148,7 @@ def _attempt(
     max_rounds = opts.max_expansions + 1
     for rounds in range(1, max_rounds + 1):
         if rounds > 1:
-            world = SymbolicWorld(task, seed=seed)
+            world = SymbolicWorld(task, seed=seed, groundings=groundings)
             loop.use_world(world)
         ticks_before = loop.ticks
         premature_before = loop.premature_successes

@@ -20,7 +20,7 @@ from btplan.model import (
     Task,
     instantiate,
 )
-from btplan.planner.grounding import bindings, unify
+from btplan.planner.grounding import Objects, bindings, unify
 from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
 from btplan.planner.options import PlannerOptions
@@ -38,14 +38,23 @@ class AchieverIndex:
             for effect in template.effects:
                 key = (effect.predicate, effect.positive)
                 self._by_effect.setdefault(key, []).append((template, effect))
+        self.objects = Objects(task)
+        self._made: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
         self._relaxed: RelaxedModel | None = None
         self._mutexes: Mutexes | None = None
 
     @property
     def relaxed(self) -> RelaxedModel:
         if self._relaxed is None:
-            self._relaxed = RelaxedModel(self.task)
+            self._relaxed = RelaxedModel(self.task, objects=self.objects, ground=self.ground)
         return self._relaxed
+
+    def ground(self, template: ActionTemplate, args: tuple[str, ...]) -> GroundAction:
+        """`instantiate`, remembered: the same groundings come up on every expansion."""
+        action = self._made.get((template.name, args))
+        if action is None:
+            action = self._made[(template.name, args)] = instantiate(template, args)
+        return action
 
     def has_effect(self, condition: GroundLiteral) -> bool:
         """Whether any action template has an effect of this predicate and sign."""
@@ -73,14 +82,15 @@ class AchieverIndex:
         """
         found: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
         for template, effect in self._by_effect.get((condition.atom.predicate, condition.positive), []):
-            partial = unify(self.task, template, effect, condition.atom)
+            partial = unify(self.task, template, effect, condition.atom, self.objects)
             if partial is None:
                 continue
             for binding in bindings(
-                self.task, template, partial, state, refine, self.options.max_bindings
+                self.task, template, partial, state, refine, self.options.max_bindings,
+                self.objects,
             ):
                 args = tuple(binding[p.name] for p in template.parameters)
-                action = instantiate(template, args)
+                action = self.ground(template, args)
                 if _makes_true(action, condition) and action.key not in found:
                     found[action.key] = action
         scored = sorted((self._rank(a, state), a) for a in found.values())

@@ -18,6 +18,27 @@ from btplan.planner.protocol import Refiner
 Candidates = Callable[[ActionTemplate, Mapping[str, str], Parameter], list[str]]
 
 
+class Objects:
+    """The objects of every type, computed once: grounding asks for them constantly."""
+
+    def __init__(self, task: Task) -> None:
+        self._task = task
+        self._of: dict[str, tuple[str, ...]] = {}
+        self._sets: dict[str, frozenset[str]] = {}
+
+    def of(self, type_name: str) -> tuple[str, ...]:
+        found = self._of.get(type_name)
+        if found is None:
+            found = self._of[type_name] = self._task.objects_of(type_name)
+            self._sets[type_name] = frozenset(found)
+        return found
+
+    def has_type(self, value: str, type_name: str) -> bool:
+        if type_name not in self._sets:
+            self.of(type_name)
+        return value in self._sets[type_name]
+
+
 def static_checks(task: Task, template: ActionTemplate) -> tuple[Literal, ...]:
     """The literals that filter bindings: `where` constraints and static preconditions."""
     static = task.domain.changed_predicates
@@ -34,12 +55,14 @@ def bindings(
     state: frozenset[Atom],
     refine: Refiner | None,
     limit: int,
+    objects: Objects | None = None,
 ) -> Iterator[dict[str, str]]:
     """Complete bindings of `template` extending `partial`, depth first, at most `limit`.
 
     Objects come sorted by name and refined values in the refiner's order, so the
     enumeration is deterministic.
     """
+    table = objects or Objects(task)
     checks = static_checks(task, template)
     names = {p.name for p in template.parameters}
     order = [p for p in template.parameters if p.name not in partial]
@@ -50,7 +73,7 @@ def bindings(
     def options(binding: Mapping[str, str], parameter: Parameter) -> list[str]:
         if parameter.refined and refine is not None:
             return refine(template, binding, parameter)
-        return list(task.objects_of(parameter.type))
+        return list(table.of(parameter.type))
 
     def extend(binding: dict[str, str], depth: int) -> Iterator[dict[str, str]]:
         nonlocal count
@@ -98,7 +121,8 @@ def _consistent(
 
 
 def unify(
-    task: Task, template: ActionTemplate, effect: Literal, atom: Atom
+    task: Task, template: ActionTemplate, effect: Literal, atom: Atom,
+    objects: Objects | None = None,
 ) -> dict[str, str] | None:
     """The partial binding under which `effect` becomes `atom`, or None if none does.
 
@@ -106,6 +130,7 @@ def unify(
     """
     if effect.predicate != atom.predicate or len(effect.args) != len(atom.args):
         return None
+    table = objects or Objects(task)
     types = {p.name: p for p in template.parameters}
     binding: dict[str, str] = {}
     for name, value in zip(effect.args, atom.args):
@@ -118,12 +143,7 @@ def unify(
             continue
         if binding.get(name, value) != value:
             return None
-        if not parameter.refined and not _has_type(task, value, parameter.type):
+        if not parameter.refined and not table.has_type(value, parameter.type):
             return None
         binding[name] = value
     return binding
-
-
-def _has_type(task: Task, value: str, type_name: str) -> bool:
-    declared = task.object_types.get(value)
-    return declared is not None and task.domain.is_subtype(declared, type_name)

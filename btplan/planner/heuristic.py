@@ -11,21 +11,28 @@ from __future__ import annotations
 
 import heapq
 import math
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
-from btplan.model import Atom, GroundAction, Task, instantiate
-from btplan.planner.grounding import bindings
+from btplan.model import ActionTemplate, Atom, GroundAction, Task, instantiate
+from btplan.planner.grounding import Objects, bindings
 
 
 class RelaxedModel:
     """Every grounding of the domain that static facts allow, indexed for h_add."""
 
-    def __init__(self, task: Task, limit: int = 200_000) -> None:
+    def __init__(
+        self,
+        task: Task,
+        limit: int = 200_000,
+        objects: Objects | None = None,
+        ground: Callable[[ActionTemplate, tuple[str, ...]], GroundAction] = instantiate,
+    ) -> None:
         self.actions: list[GroundAction] = []
+        table = objects or Objects(task)
         for template in task.domain.actions:
-            for binding in bindings(task, template, {}, task.initial_state, None, limit):
+            for binding in bindings(task, template, {}, task.initial_state, None, limit, table):
                 args = tuple(binding[p.name] for p in template.parameters)
-                self.actions.append(instantiate(template, args))
+                self.actions.append(ground(template, args))
         self._pre: list[tuple[Atom, ...]] = [
             tuple(p.atom for p in a.preconditions if p.positive) for a in self.actions
         ]

@@ -40,13 +40,15 @@ class SymbolicWorld:
         *,
         seed: int = 0,
         failure_probability: Mapping[str, float] | None = None,
+        groundings: dict[LeafKey, GroundAction] | None = None,
     ) -> None:
         self.task = task
         self._state: set[Atom] = set(task.initial_state)
         self._rng = random.Random(seed)
         self._failure_probability = dict(failure_probability or {})
         self._templates = task.domain.action_map
-        self._grounded: dict[LeafKey, GroundAction] = {}
+        # Worlds of one task may share their groundings (offline planning starts many).
+        self._grounded: dict[LeafKey, GroundAction] = groundings if groundings is not None else {}
         self._remaining: dict[LeafKey, int] = {}
         self._fail_next: list[tuple[str, tuple[str, ...] | None]] = []
         self.executed: list[GroundAction] = []
