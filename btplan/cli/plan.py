@@ -36,7 +36,8 @@ def plan_command(
         metavar="[PROBLEM]", help="Problem file, when it is not in DOMAIN.", show_default=False)
     ] = None,
     fmt: Annotated[Format | None, typer.Option(
-        "--format", "-f", help="Tree format: ascii on a terminal, json when piped.",
+        "--format", "-f",
+        help="Tree format: ascii on a terminal, json when piped, by extension for -o.",
         show_default=False)] = None,
     out: Annotated[str, typer.Option("-o", "--out", help="Write the tree here ('-': stdout).")
                    ] = STDIO,
@@ -71,7 +72,7 @@ def plan_command(
         raise InputError(f"--timeout must be positive, got {timeout:g}")
     folder = _trace_folder(trace_expansions)
     task = load(*([domain] if problem is None else [domain, problem]))
-    chosen = fmt.value if fmt is not None else ("ascii" if sys.stdout.isatty() else "json")
+    chosen = fmt.value if fmt is not None else default_format(out)
     written: list[int] = []
 
     def trace(tree: BehaviorTree, expansion: Expansion) -> None:
@@ -92,6 +93,14 @@ def plan_command(
     if plan_out is not None:
         write_atomic(plan_out, "".join(a.ipc() + "\n" for a in result.executed))
     stderr.print(summary(result))
+
+
+def default_format(out: str) -> str:
+    """ascii on a terminal, json in a pipe; for a file, what its extension says (json)."""
+    if out == STDIO:
+        return "ascii" if sys.stdout.isatty() else "json"
+    suffix = Path(out).suffix.lower().lstrip(".")
+    return {"xml": "xml", "dot": "dot", "gv": "dot", "txt": "ascii"}.get(suffix, "json")
 
 
 def summary(result: PlanResult) -> str:

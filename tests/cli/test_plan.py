@@ -154,3 +154,10 @@ def test_paper_mode_and_alternatives_are_options() -> None:
     paper = runner.invoke(app, ["plan", sussman, "--paper"])
     assert paper.exit_code == 1 and "conflict" in paper.stderr
     assert runner.invoke(app, ["plan", sussman, "--max-alternatives", "0"]).exit_code == 2
+
+
+def test_output_format_follows_the_file_extension(tmp_path: Path) -> None:
+    for name, start in (("t.xml", "<?xml"), ("t.dot", "digraph"), ("t.json", "{")):
+        result = runner.invoke(app, ["plan", PICK, "-o", str(tmp_path / name)])
+        assert result.exit_code == 0, result.output
+        assert (tmp_path / name).read_text().lstrip().startswith(start)
