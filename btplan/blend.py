@@ -112,7 +112,7 @@ class BlendedLoop:
                 report.expansions.append(expansion)
                 self._stalls = 0
             else:
-                self._stall(before)
+                self._stall()
         else:
             self._stalls = 0
         after = self.world.facts()
@@ -255,7 +255,7 @@ class BlendedLoop:
         mutexes = self.index.mutexes if self.options.mutexes else None
         return Judge(self.grounding, mutexes)
 
-    def _stall(self, state: frozenset[Atom]) -> None:
+    def _stall(self) -> None:
         """The tree failed with nothing to expand (an action failed): retry, a few times."""
         self._stalls += 1
         if self._stalls > self.options.stall_limit:
