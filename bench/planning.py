@@ -11,6 +11,8 @@ are validated against the domain before they count as solved.
     python bench/planning.py                        # default sizes, 2 seeds, 60 s limit
     python bench/planning.py --seeds 1 --timeout 20 --plot docs/planning_time.png
     python bench/planning.py --domains gripper --sizes 4,8,16
+    python bench/planning.py --versus-paper         # btplan's defaults against Algorithms 1-3
+                                                    # as published (docs/planner.md)
 """
 
 from __future__ import annotations
@@ -29,8 +31,11 @@ from pathlib import Path
 
 from btplan.api import load, plan
 from btplan.errors import PlanningError
-from btplan.lang.generators import generate
+from btplan.lang.generators import GENERATORS, generate
 from btplan.model import Task
+from btplan.planner import PlannerOptions
+
+DOMAINS = Path(__file__).resolve().parents[1] / "domains"
 
 SIZES = {
     "blocksworld": [4, 6, 8, 10, 12, 15, 20, 25],
@@ -218,6 +223,36 @@ def plot(rows: list[Row], path: str) -> None:
     plt.close(figure)
 
 
+def versus_paper(limit: float) -> None:
+    """Solved counts and outcomes of the published algorithms beside btplan's defaults."""
+    cases = [("blocksworld", n, s) for n in (4, 6, 8, 10) for s in range(5)]
+    cases += [("gripper", n, s) for n in (2, 4, 8) for s in range(3)]
+    cases += [("logistics", n, s) for n in (1, 2, 4) for s in range(3)]
+    for mode, options in (("paper", PlannerOptions.paper()), ("btplan", None)):
+        start = time.perf_counter()
+        counts: dict[str, dict[str, int]] = {}
+        for name, size, seed in cases:
+            domain, problem = GENERATORS[name](size, seed=seed)
+            task = Task(domain=domain, problem=problem)
+            try:
+                plan(task, options=options, timeout=limit)
+                outcome = "solved"
+            except PlanningError as error:
+                outcome = type(error).__name__
+            counts.setdefault(name, {}).setdefault(outcome, 0)
+            counts[name][outcome] += 1
+        for path in ("planner_sussman.bt", "planner_invert.bt"):
+            try:
+                plan(load(str(DOMAINS / path)), options=options, timeout=limit)
+                outcome = "solved"
+            except PlanningError as error:
+                outcome = type(error).__name__
+            counts[path] = {outcome: 1}
+        print(f"{mode:<7} {time.perf_counter() - start:6.1f}s  " + "; ".join(
+            f"{name}: " + ", ".join(f"{k} {v}" for k, v in sorted(c.items()))
+            for name, c in counts.items()))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--domains", default="blocksworld,gripper,logistics")
@@ -226,7 +261,12 @@ def main() -> None:
     parser.add_argument("--timeout", type=float, default=60.0)
     parser.add_argument("--no-memory", action="store_true", help="skip the tracemalloc runs")
     parser.add_argument("--plot", help="write a PNG of time against size here")
+    parser.add_argument("--versus-paper", action="store_true",
+                        help="compare with Algorithms 1-3 as published instead")
     args = parser.parse_args()
+    if args.versus_paper:
+        versus_paper(min(args.timeout, 10.0))
+        return
     domains = args.domains.split(",")
     sizes = dict(SIZES)
     if args.sizes:
