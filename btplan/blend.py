@@ -30,7 +30,13 @@ from btplan.planner import (
     resolve_conflicts,
 )
 from btplan.planner.conflicts import achiever_leaves, alternative_conflicts
-from btplan.planner.expand import achiever_sequence, conditions_bfs, non_circular, pursued
+from btplan.planner.expand import (
+    achiever_sequence,
+    conditions_bfs,
+    goal_check,
+    non_circular,
+    pursued,
+)
 
 
 @dataclass
@@ -88,6 +94,10 @@ class BlendedLoop:
         self._last_state: frozenset[Atom] | None = None
         self._stalls = 0
         self.premature_successes = 0
+        check = goal_check(self.tree)
+        if check is not None:  # the final re-check of the goals is never expanded
+            self._expanded.update(check.children)
+            self._dead.update(check.children)
 
     def use_world(self, world: PlanningWorld) -> None:
         """Keep the tree and continue against another world (a fresh run from the start)."""
@@ -111,6 +121,8 @@ class BlendedLoop:
             if expansion is not None:
                 report.expansions.append(expansion)
                 self._stalls = 0
+            elif self.world.facts() != before:
+                self._stalls = 0  # work was done; the goal check sent it round again
             else:
                 self._stall()
         else:

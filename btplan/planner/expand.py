@@ -58,11 +58,33 @@ def condition_copy(node: Node) -> Node | None:
     return copy if literal.positive else Inverter(copy)
 
 
+GOAL_CHECK = "all goals hold"
+"""Name of the Sequence that checks every goal again at the end of a multi-goal tree."""
+
+
 def initial_tree(task: Task) -> BehaviorTree:
-    """Algorithm 1, lines 1-3: the goal conditions in a Sequence; one goal stands alone."""
+    """Algorithm 1, lines 1-3: the goal conditions in a Sequence; one goal stands alone.
+
+    With several goals, a last child checks them all again (named GOAL_CHECK, never
+    expanded): actions may finish within the tick they start, so work for a later goal
+    can undo an earlier one after it was checked, and the tree must not report SUCCESS
+    then. A single goal needs no check: only its own achiever runs after it.
+    """
     goals = [condition_node(g, task) for g in task.goal_literals]
-    root: Node = goals[0] if len(goals) == 1 else SequenceNode(goals)
-    return BehaviorTree(root)
+    if len(goals) == 1:
+        return BehaviorTree(goals[0])
+    check = SequenceNode([condition_node(g, task) for g in task.goal_literals], name=GOAL_CHECK)
+    return BehaviorTree(SequenceNode([*goals, check]))
+
+
+def goal_check(tree: BehaviorTree) -> Node | None:
+    """The final goal check of a multi-goal tree, if it has one."""
+    root = tree.root
+    if isinstance(root, SequenceNode) and root.children:
+        last = root.children[-1]
+        if isinstance(last, SequenceNode) and last.name == GOAL_CHECK:
+            return last
+    return None
 
 
 def atomic_bt(condition: Node, achievers: Sequence[GroundAction], task: Task) -> Fallback:
