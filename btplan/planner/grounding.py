@@ -17,6 +17,10 @@ from btplan.planner.protocol import Refiner
 
 Candidates = Callable[[ActionTemplate, Mapping[str, str], Parameter], list[str]]
 
+PLACEHOLDER = "?"
+"""Stands for a refined value when no world is asked (grounding the whole domain) and
+the task declares no object of its type. Checks that mention it are satisfiable."""
+
 
 class Objects:
     """The objects of every type, computed once: grounding asks for them constantly."""
@@ -63,7 +67,9 @@ def bindings(
     enumeration is deterministic.
     """
     table = objects or Objects(task)
-    checks = static_checks(task, template)
+    refined = {p.name for p in template.parameters if p.refined}
+    # The world answers for refined values, `where` included: checks on them are its own.
+    checks = tuple(c for c in static_checks(task, template) if not refined & set(c.args))
     names = {p.name for p in template.parameters}
     order = [p for p in template.parameters if p.name not in partial]
     # Enumerate ordinary parameters first: refiners usually need them bound.
@@ -73,6 +79,8 @@ def bindings(
     def options(binding: Mapping[str, str], parameter: Parameter) -> list[str]:
         if parameter.refined and refine is not None:
             return refine(template, binding, parameter)
+        if parameter.refined:
+            return list(table.of(parameter.type)) or [PLACEHOLDER]
         return list(table.of(parameter.type))
 
     def extend(binding: dict[str, str], depth: int) -> Iterator[dict[str, str]]:
@@ -111,6 +119,8 @@ def _consistent(
         if any(a in names and a not in binding for a in literal.args):
             continue
         args = tuple(binding.get(a, a) for a in literal.args)
+        if PLACEHOLDER in args:
+            continue
         if literal.predicate == EQUALITY:
             value = args[0] == args[1]
         else:

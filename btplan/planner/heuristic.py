@@ -1,5 +1,8 @@
 """A relaxed-reachability estimate (h_add) over the grounded domain.
 
+Preconditions on refined parameters are dropped: the backend will supply a value (a
+trajectory, a pose) that meets them when the action is chosen.
+
 The paper orders achievers arbitrarily ("we do not investigate which action is the
 optimal one"). On classic domains that first match is often a poor choice, so btplan
 ranks achievers by the additive cost of reaching their preconditions when delete
@@ -13,8 +16,8 @@ import heapq
 import math
 from collections.abc import Callable, Iterable
 
-from btplan.model import ActionTemplate, Atom, GroundAction, Task, instantiate
-from btplan.planner.grounding import Objects, bindings
+from btplan.model import ActionTemplate, Atom, GroundAction, Task, ground_literal, instantiate
+from btplan.planner.grounding import PLACEHOLDER, Objects, bindings
 
 
 class RelaxedModel:
@@ -32,7 +35,7 @@ class RelaxedModel:
         for template in task.domain.actions:
             for binding in bindings(task, template, {}, task.initial_state, None, limit, table):
                 args = tuple(binding[p.name] for p in template.parameters)
-                self.actions.append(ground(template, args))
+                self.actions.append(_optimistic(template, binding, ground(template, args)))
         self._pre: list[tuple[Atom, ...]] = [
             tuple(p.atom for p in a.preconditions if p.positive) for a in self.actions
         ]
@@ -84,3 +87,27 @@ class RelaxedModel:
         """Sum of h_add costs; infinite when some atom is unreachable."""
         cost = self.costs(state)
         return sum(cost.get(a, math.inf) for a in atoms)
+
+
+def _optimistic(
+    template: ActionTemplate, binding: dict[str, str], action: GroundAction
+) -> GroundAction:
+    """Assume the backend supplies refined values that satisfy their preconditions.
+
+    A precondition on a refined parameter (free(t) of a trajectory) is the backend's
+    to meet, so it is dropped; effects on the placeholder say nothing and go too.
+    """
+    refined = {p.name for p in template.parameters if p.refined}
+    if not refined:
+        return action
+    dropped = {
+        ground_literal(lit, binding).atom
+        for lit in template.preconditions if refined & set(lit.args)
+    }
+    return action.model_copy(update={
+        "preconditions": tuple(
+            p for p in action.preconditions
+            if p.atom not in dropped and PLACEHOLDER not in p.atom.args),
+        "add": tuple(a for a in action.add if PLACEHOLDER not in a.args),
+        "delete": tuple(a for a in action.delete if PLACEHOLDER not in a.args),
+    })
