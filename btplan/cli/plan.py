@@ -73,21 +73,24 @@ def plan_command(
     folder = _trace_folder(trace_expansions)
     task = load(*([domain] if problem is None else [domain, problem]))
     chosen = fmt.value if fmt is not None else default_format(out)
-    written: list[int] = []
+    snapshots: list[tuple[str, str]] = []
 
     def trace(tree: BehaviorTree, expansion: Expansion) -> None:
-        if folder is None:
-            return
-        written.append(expansion.tick)
-        stem = folder / f"expansion_{len(written):03d}"
-        write_atomic(f"{stem}.dot", dump(tree, "dot"))
-        write_atomic(f"{stem}.json", dump(tree, "json"))
+        if folder is not None:
+            snapshots.append((dump(tree, "dot"), dump(tree, "json")))
 
     options = PlannerOptions.paper() if paper else None
     if max_alternatives is not None:
         options = replace(options or PlannerOptions(), max_alternatives=max_alternatives)
     result = plan(task, seed=seed, max_expansions=max_expansions, max_ticks=max_ticks,
                   timeout=timeout, options=options, on_expansion=trace)
+    if folder is not None:
+        # Only the attempt that succeeded: plan() may have started over with wider options.
+        kept = snapshots[len(snapshots) - len(result.expansions):] if result.expansions else []
+        for number, (dot, saved) in enumerate(kept, start=1):
+            stem = folder / f"expansion_{number:03d}"
+            write_atomic(f"{stem}.dot", dot)
+            write_atomic(f"{stem}.json", saved)
     text = dump(result.tree, chosen)
     write_atomic(out, text if text.endswith("\n") else text + "\n")
     if plan_out is not None:
