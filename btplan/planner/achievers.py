@@ -9,7 +9,6 @@ matching effect is unified with the condition, the remaining parameters are boun
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 
 from btplan.model import (
     ActionTemplate,
@@ -122,7 +121,3 @@ def _makes_true(action: GroundAction, condition: GroundLiteral) -> bool:
     if condition.positive:
         return condition.atom in action.add
     return action.deletes(condition.atom)
-
-
-def describe(actions: Sequence[GroundAction]) -> list[str]:
-    return [str(a) for a in actions]

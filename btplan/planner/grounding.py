@@ -10,12 +10,10 @@ parameter is asked of the refiner (the world backend) instead of enumerated.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Iterator, Mapping
 
 from btplan.model import EQUALITY, ActionTemplate, Atom, Literal, Parameter, Task
 from btplan.planner.protocol import Refiner
-
-Candidates = Callable[[ActionTemplate, Mapping[str, str], Parameter], list[str]]
 
 PLACEHOLDER = "?"
 """Stands for a refined value when no world is asked (grounding the whole domain) and
