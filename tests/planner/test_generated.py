@@ -21,7 +21,10 @@ CASES = [
 ] + [
     ("logistics", size, seed) for size in (1, 2, 4) for seed in (0, 1)
 ]
-LARGER = [("blocksworld", 14, 1), ("gripper", 12, 0), ("logistics", 6, 1)]
+LARGER = [("blocksworld", 14, 1), ("gripper", 12, 0), ("logistics", 6, 1),
+          # once failed: a goal undone within one tick; a dead end without re-expansion
+          ("blocksworld", 8, 2), ("blocksworld", 12, 3), ("blocksworld", 15, 3),
+          ("blocksworld", 25, 1), ("logistics", 12, 1)]
 
 
 def generated(name: str, size: int, seed: int) -> Task:
