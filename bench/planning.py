@@ -241,7 +241,7 @@ def versus_paper(limit: float) -> None:
                 outcome = type(error).__name__
             counts.setdefault(name, {}).setdefault(outcome, 0)
             counts[name][outcome] += 1
-        for path in ("planner_sussman.bt", "planner_invert.bt"):
+        for path in ("planner_sussman.bt", "planner_invert.bt", "planner_swap.bt"):
             try:
                 plan(load(str(DOMAINS / path)), options=options, timeout=limit)
                 outcome = "solved"

@@ -103,7 +103,7 @@ def plan(
 
 
 def fallback_strategies(options: PlannerOptions) -> list[PlannerOptions]:
-    """The default options, then wider fallbacks, then no goal reordering.
+    """The default options, then wider fallbacks, no goal reordering, protected goals.
 
     Backchaining commits to the achievers it ranked best in the state it expanded
     in; when that leads nowhere, starting over with more alternatives per condition,
@@ -116,6 +116,7 @@ def fallback_strategies(options: PlannerOptions) -> list[PlannerOptions]:
         options,
         replace(options, max_alternatives=options.max_alternatives * 2),
         replace(options, reorder_goals=False),
+        replace(options, protect_goals=True),
     ]
 
 

@@ -10,7 +10,17 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from btplan.bt import FAILURE, SUCCESS, Action, BehaviorTree, Fallback, LeafKey, Node, Status
+from btplan.bt import (
+    FAILURE,
+    SUCCESS,
+    Action,
+    BehaviorTree,
+    Composite,
+    Fallback,
+    LeafKey,
+    Node,
+    Status,
+)
 from btplan.errors import (
     BudgetExceededError,
     NoAchieverError,
@@ -32,11 +42,13 @@ from btplan.planner import (
 from btplan.planner.conflicts import achiever_leaves, alternative_conflicts
 from btplan.planner.expand import (
     achiever_sequence,
+    condition_node,
     conditions_bfs,
     goal_check,
     non_circular,
     pursued,
 )
+from btplan.planner.protect import white_knights
 
 
 @dataclass
@@ -257,11 +269,27 @@ class BlendedLoop:
         for action in achievers:
             self.grounding[action.key] = action
         subtree = expand_tree(self.tree, node, achievers, self.task)
+        if self.options.protect_goals:
+            self._protect(subtree)
         resolution = resolve_conflicts(
             self.tree, subtree, self._judge(), self.options.reorder_goals,
             self.options.refine_more,
         )
         return self._record(literal, achievers, len(resolution.conflicts), resolution.moves)
+
+    def _protect(self, subtree: Fallback) -> None:
+        """Check, before each new achiever, what keeps the other goals reachable."""
+        state = self.world.facts()
+        for alternative in subtree.children[1:]:
+            last = alternative.children[-1] if alternative.children else None
+            if not isinstance(last, Action) or last.key not in self.grounding:
+                continue
+            action = self.grounding[last.key]
+            for atom in white_knights(action, state, self.task.goal_literals,
+                                      self.index.relaxed):
+                guard = condition_node(GroundLiteral(atom, True), self.task)
+                assert isinstance(alternative, Composite)
+                alternative.insert(0, guard)
 
     def _judge(self) -> Judge:
         mutexes = self.index.mutexes if self.options.mutexes else None

@@ -43,6 +43,7 @@ class RelaxedModel:
         for i, pre in enumerate(self._pre):
             for atom in set(pre):
                 self._by_pre.setdefault(atom, []).append(i)
+        self._producers: dict[Atom, list[GroundAction]] | None = None
         self._cache_state: frozenset[Atom] | None = None
         self._cache: dict[Atom, float] = {}
 
@@ -82,6 +83,15 @@ class RelaxedModel:
             if value < cost.get(atom, math.inf):
                 cost[atom] = value
                 heapq.heappush(queue, (value, atom))
+
+    def producers(self, atom: Atom) -> list[GroundAction]:
+        """The grounded actions that add `atom`."""
+        if self._producers is None:
+            self._producers = {}
+            for action in self.actions:
+                for added in action.add:
+                    self._producers.setdefault(added, []).append(action)
+        return self._producers.get(atom, [])
 
     def estimate(self, state: frozenset[Atom], atoms: Iterable[Atom]) -> float:
         """Sum of h_add costs; infinite when some atom is unreachable."""

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import Any
 
 
 @dataclass(frozen=True, slots=True)
@@ -17,7 +18,9 @@ class PlannerOptions:
     the new subtree alone, as the paper does, finds no conflict-free place. `mutexes`
     judges conflicts by h^2 mutual exclusion rather than by single effects.
     `refine_more` prunes circular and conflicting achievers and lets a failed,
-    expanded condition gain achievers that fit a later state. `PlannerOptions.paper()`
+    expanded condition gain achievers that fit a later state. `protect_goals` adds,
+    before an achiever that would make a goal unreachable, a condition that keeps it
+    reachable (costly: plan() uses it as its last fallback). `PlannerOptions.paper()`
     turns every departure from the paper off, for comparison.
     """
 
@@ -28,10 +31,11 @@ class PlannerOptions:
     reorder_goals: bool = True
     mutexes: bool = True
     refine_more: bool = True
+    protect_goals: bool = False
     stall_limit: int = 3
 
     @classmethod
-    def paper(cls, **changes: int) -> PlannerOptions:
+    def paper(cls, **changes: Any) -> PlannerOptions:
         """Algorithms 1-3 as published: first-match order, no extensions."""
-        return cls(heuristic=False, reorder_goals=False, mutexes=False, refine_more=False,
-                   **changes)
+        base = cls(heuristic=False, reorder_goals=False, mutexes=False, refine_more=False)
+        return replace(base, **changes)

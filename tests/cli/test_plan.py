@@ -89,9 +89,9 @@ def test_plan_reads_pddl_domain_and_problem(tmp_path: Path) -> None:
     assert {s.split()[0] for s in steps} <= {"(move", "(pick", "(drop"}
 
 
-def test_an_unresolvable_goal_interaction_exits_1_naming_the_condition(tmp_path: Path) -> None:
+def test_an_impossible_swap_exits_1_naming_the_condition(tmp_path: Path) -> None:
     path = tmp_path / "swap.bt"
-    path.write_text(SWAP)
+    path.write_text(SWAP)  # two registers, no spare: the swap cannot be done
     result = runner.invoke(app, ["plan", str(path)])
     assert result.exit_code == 1
     assert "holds(r2, a)" in result.stderr and "Traceback" not in result.output
@@ -114,11 +114,11 @@ domain registers {
 }
 problem swap for registers {
     objects {
-        r1, r2, r3 : register
-        a, b, c : value
+        r1, r2 : register
+        a, b : value
     }
     init {
-        holds(r1, a), holds(r2, b), holds(r3, c)
+        holds(r1, a), holds(r2, b)
     }
     goal {
         holds(r1, b), holds(r2, a)

@@ -60,3 +60,12 @@ def test_same_task_and_seed_give_the_same_tree_and_plan() -> None:
     first, second = plan(task, seed=5), plan(task, seed=5)
     assert dump(first.tree, "json") == dump(second.tree, "json")
     assert [a.ipc() for a in first.executed] == [a.ipc() for a in second.executed]
+
+
+def test_register_swap_saves_the_value_before_overwriting_it() -> None:
+    task = load(str(DOMAINS / "planner_swap.bt"))
+    result = plan(task)
+    validate(task, result.executed)
+    assert [a.ipc() for a in result.executed] == [
+        "(copy r3 r1 a c)", "(copy r1 r2 b a)", "(copy r2 r3 a b)"]
+    assert [a.ipc() for a in replay(task, result)] == [a.ipc() for a in result.executed]
