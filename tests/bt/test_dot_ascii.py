@@ -144,3 +144,12 @@ def test_unknown_formats_are_input_errors() -> None:
         dump(tree, "png")
     with pytest.raises(InputError, match="cannot read trees in format 'dot'"):
         load_tree("digraph {}", "dot")
+
+
+def test_ascii_shows_lower_case_action_names_that_look_like_markup() -> None:
+    """`[pickup(a)]` must print as text, not vanish as a rich style tag."""
+    from btplan.bt import Action, Condition
+
+    tree = BehaviorTree(Sequence([Condition("clear", ("a",), ("x",)), Action("pickup", ("a",), ("x",))]))
+    text = dump_ascii(tree)
+    assert "[pickup(a)]" in text and "(clear(a))" in text

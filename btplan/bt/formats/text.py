@@ -27,7 +27,7 @@ def _line(node: Node, status: Status | None, traced: bool, halted: bool) -> str:
     from rich.markup import escape
 
     if isinstance(node, Action):
-        text = f"[{escape(node.name)}]"
+        text = escape(f"[{node.name}]")
     elif isinstance(node, Leaf):
         text = f"({escape(node.name)})"
     else:
