@@ -58,16 +58,22 @@ def bindings(
     refine: Refiner | None,
     limit: int,
     objects: Objects | None = None,
+    optimistic: bool = False,
 ) -> Iterator[dict[str, str]]:
     """Complete bindings of `template` extending `partial`, depth first, at most `limit`.
 
     Objects come sorted by name and refined values in the refiner's order, so the
-    enumeration is deterministic.
+    enumeration is deterministic. `optimistic` skips the checks on predicates that
+    actions change (`where: blocks(s, t)`): false in one state, they may hold in a later
+    one, so a reachability estimate must not rule those bindings out.
     """
     table = objects or Objects(task)
     refined = {p.name for p in template.parameters if p.refined}
     # The world answers for refined values, `where` included: checks on them are its own.
     checks = tuple(c for c in static_checks(task, template) if not refined & set(c.args))
+    if optimistic:
+        changing = task.domain.changed_predicates
+        checks = tuple(c for c in checks if c.predicate not in changing)
     names = {p.name for p in template.parameters}
     order = [p for p in template.parameters if p.name not in partial]
     # Enumerate ordinary parameters first: refiners usually need them bound.

@@ -33,7 +33,9 @@ class RelaxedModel:
         self.actions: list[GroundAction] = []
         table = objects or Objects(task)
         for template in task.domain.actions:
-            for binding in bindings(task, template, {}, task.initial_state, None, limit, table):
+            for binding in bindings(
+                task, template, {}, task.initial_state, None, limit, table, optimistic=True
+            ):
                 args = tuple(binding[p.name] for p in template.parameters)
                 self.actions.append(_optimistic(template, binding, ground(template, args)))
         self._pre: list[tuple[Atom, ...]] = [

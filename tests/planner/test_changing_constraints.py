@@ -1,0 +1,29 @@
+"""A `where` constraint on a predicate actions change must not hide achievers for good.
+
+ClearPath(s, t) is bound by `where: blocks(s, t)`, false in the initial state. When
+the sphere blocks the path before the robot first needs it, the reachability estimate
+must still count the path as clearable, or MoveTo(goal) is pruned as unreachable.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from btplan.acting import run
+from btplan.api import load
+
+DOMAINS = Path(__file__).resolve().parents[2] / "domains"
+OBSTACLE = load(str(DOMAINS / "pick_place_obstacle.bt"))
+BLOCK = ["set:blocks(sphere, tau_goal)@{t}", "clear:free(tau_goal)@{t}"]
+
+
+@pytest.mark.parametrize("tick", [1, 2, 5, 8])
+def test_a_path_blocked_at_any_time_is_cleared_and_the_goal_reached(tick: int) -> None:
+    result = run(OBSTACLE, disturb=[s.format(t=tick) for s in BLOCK], max_ticks=200)
+    assert result.reached, result.reason
+    names = [a.name for a in result.executed]
+    assert "ClearPath" in names
+    assert names.index("ClearPath") < names.index("Place")
+    assert names[-1] == "Place"
