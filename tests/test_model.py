@@ -6,8 +6,17 @@ import pytest
 from pydantic import ValidationError
 
 from btplan.model import (
-    ActionTemplate, Atom, Domain, GroundLiteral, Literal, Parameter, Problem, Task, TypeDef,
-    TypedName, instantiate,
+    ActionTemplate,
+    Atom,
+    Domain,
+    GroundLiteral,
+    Literal,
+    Parameter,
+    Problem,
+    Task,
+    TypeDef,
+    TypedName,
+    instantiate,
 )
 
 MOVE = ActionTemplate(
