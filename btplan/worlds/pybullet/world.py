@@ -66,8 +66,8 @@ class PyBulletWorld:
         self._check_objects()
         self.sim = Sim(scene, gui)  # after the checks: a refused scene leaves no connection open
         scene_names = {*self.cube_names, *(r.name for r in scene.regions)}
-        # Initial facts about things the scene does not contain (the problem's stand-ins
-        # for trajectories and poses) cannot be measured; they are kept as given.
+        # Initial facts about things the scene does not contain (a trajectory or pose the
+        # problem declares) cannot be measured; they are kept as given.
         self.assumed = frozenset(a for a in task.initial_state
                                  if any(x not in scene_names for x in a.args))
 
