@@ -1,12 +1,34 @@
-"""Suite-wide options: `--update-golden` rewrites golden files instead of comparing."""
+"""Suite-wide options and checks.
+
+`--update-golden` rewrites golden files instead of comparing. At the end of a run inside
+a venv, every imported module must come from the venv, the checkout, the standard library
+or a temporary folder: a module found in the machine's global site-packages would make
+the suite pass here and fail on a fresh machine.
+"""
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import pytest
 
 GOLDEN = Path(__file__).parent / "golden"
+
+
+def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
+    if sys.prefix == sys.base_prefix:
+        return  # not in a venv: nothing to compare with
+    from test_environment import foreign_modules  # tests/ is on sys.path (rootdir conftest)
+
+    foreign = foreign_modules()
+    if foreign:
+        reporter = session.config.pluginmanager.get_plugin("terminalreporter")
+        if reporter is not None:
+            reporter.write_line(
+                "modules imported from outside the venv and the checkout "
+                f"(install them through pyproject.toml): {', '.join(foreign)}", red=True)
+        session.exitstatus = pytest.ExitCode.TESTS_FAILED
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:

@@ -1,8 +1,12 @@
 """A non-editable install finds the grammars: they ship inside the wheel as package data.
 
 Builds the wheel from a copy of the sources (so the working tree stays clean), installs
-it with --no-deps into a fresh venv that borrows the system's dependencies, and runs a
-check from an unrelated folder.
+it with --no-deps into a fresh, isolated venv, and runs a check from an unrelated folder.
+The new venv borrows its dependencies from the interpreter running the suite (a path line
+in a .pth file), never from the machine's global site-packages: with
+--system-site-packages, a venv made from the README's .venv would see the base
+interpreter's packages instead, and the test would pass only where lark happens to be
+installed globally.
 """
 
 from __future__ import annotations
@@ -11,6 +15,7 @@ import os
 import shutil
 import subprocess
 import sys
+import sysconfig
 import zipfile
 from pathlib import Path
 
@@ -25,6 +30,20 @@ def run(*args: str | Path, cwd: Path) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
         [str(a) for a in args], cwd=cwd, capture_output=True, text=True, check=False, env=env
     )
+
+
+def borrow_dependencies(python: Path) -> None:
+    """Let the new venv import what the suite's own interpreter has installed.
+
+    A plain path in a .pth file is appended to sys.path after the venv's own site-packages,
+    and the .pth files inside it are not processed, so the checkout's editable install
+    cannot shadow the wheel.
+    """
+    where = run(python, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])",
+                cwd=python.parent)
+    assert where.returncode == 0, where.stderr
+    own = {sysconfig.get_paths()["purelib"], sysconfig.get_paths()["platlib"]}
+    (Path(where.stdout.strip()) / "borrowed.pth").write_text("\n".join(sorted(own)) + "\n")
 
 
 @pytest.mark.slow
@@ -57,9 +76,10 @@ def test_installed_wheel_reads_both_grammars(tmp_path: Path) -> None:
     assert "btplan/grammar/btplan.lark" in names and "btplan/grammar/pddl.lark" in names
 
     venv = tmp_path / "venv"
-    made = run(sys.executable, "-m", "venv", "--system-site-packages", venv, cwd=tmp_path)
+    made = run(sys.executable, "-m", "venv", venv, cwd=tmp_path)
     assert made.returncode == 0, made.stderr
     python = venv / "bin" / "python"
+    borrow_dependencies(python)
     installed = run(python, "-m", "pip", "install", "-q", "--no-deps", wheel, cwd=tmp_path)
     assert installed.returncode == 0, installed.stderr
 
