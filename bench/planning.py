@@ -29,7 +29,7 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-from btplan.api import load, plan
+from btplan.acting.offline import load, plan
 from btplan.errors import PlanningError
 from btplan.lang.generators import GENERATORS, generate
 from btplan.model import Task

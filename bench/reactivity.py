@@ -25,8 +25,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from btplan.api import load
-from btplan.blend import BlendedLoop
+from btplan.acting.offline import load
+from btplan.acting.loop import BlendedLoop
 from btplan.bt import FAILURE, RUNNING, SUCCESS
 from btplan.errors import PlanningError
 from btplan.lang.generators import blocksworld

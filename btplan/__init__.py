@@ -2,6 +2,6 @@
 
 __version__ = "0.1.0"
 
-from btplan.api import PlanResult, RunOutcome, load, plan, run
+from btplan.acting import PlanResult, RunOutcome, load, plan, run
 
 __all__ = ["PlanResult", "RunOutcome", "__version__", "load", "plan", "run"]

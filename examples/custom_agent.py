@@ -7,7 +7,7 @@ the tree grows a ClearPath subtree on the fly. Run: python examples/custom_agent
 
 from pathlib import Path
 
-from btplan.api import load, run
+from btplan.acting.offline import load, run
 from btplan.model import Atom
 from btplan.worlds.agents import Disturbance
 

@@ -8,7 +8,7 @@ Run from anywhere: python examples/export_xml.py [OUT.xml]   (default: standard 
 import sys
 from pathlib import Path
 
-from btplan.api import load, run
+from btplan.acting.offline import load, run
 from btplan.bt.formats import dump
 from btplan.io import write_atomic
 

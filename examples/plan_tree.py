@@ -5,7 +5,7 @@ Run from anywhere: python examples/plan_tree.py
 
 from pathlib import Path
 
-from btplan.api import load, plan
+from btplan.acting.offline import load, plan
 from btplan.bt.formats import dump
 
 DOMAINS = Path(__file__).resolve().parents[1] / "domains"

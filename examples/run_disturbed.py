@@ -6,7 +6,7 @@ property). Run from anywhere: python examples/run_disturbed.py
 
 from pathlib import Path
 
-from btplan.api import load, run
+from btplan.acting.offline import load, run
 
 DOMAINS = Path(__file__).resolve().parents[1] / "domains"
 

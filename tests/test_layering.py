@@ -19,14 +19,13 @@ PACKAGE = Path(__file__).resolve().parents[1] / "btplan"
 FORBIDDEN: dict[str, tuple[str, ...]] = {
     "btplan.model": ("btplan",),
     "btplan.errors": ("btplan",),
-    "btplan.lang": ("btplan.bt", "btplan.planner", "btplan.worlds", "btplan.cli", "btplan.blend",
-                    "btplan.api"),
+    "btplan.lang": ("btplan.bt", "btplan.planner", "btplan.worlds", "btplan.cli", "btplan.acting"),
     "btplan.bt": ("btplan.model", "btplan.lang", "btplan.planner", "btplan.worlds", "btplan.cli",
-                  "btplan.blend", "btplan.api"),
-    "btplan.planner": ("btplan.lang", "btplan.worlds", "btplan.cli", "btplan.blend", "btplan.api"),
-    "btplan.worlds": ("btplan.lang", "btplan.planner", "btplan.cli", "btplan.blend", "btplan.api"),
-    "btplan.blend": ("btplan.cli", "btplan.lang", "btplan.worlds", "btplan.api"),
-    "btplan.api": ("btplan.cli",),
+                  "btplan.acting"),
+    "btplan.planner": ("btplan.lang", "btplan.worlds", "btplan.cli", "btplan.acting"),
+    "btplan.worlds": ("btplan.lang", "btplan.planner", "btplan.cli", "btplan.acting"),
+    "btplan.acting.loop": ("btplan.cli", "btplan.lang", "btplan.worlds"),
+    "btplan.acting": ("btplan.cli",),
 }
 ALLOWED_SELF = {"btplan.model", "btplan.errors"}
 

@@ -10,8 +10,8 @@ from typing import Annotated
 
 import typer
 
-from btplan.api import PlanResult, load, plan
-from btplan.blend import Expansion
+from btplan.acting.offline import PlanResult, load, plan
+from btplan.acting.loop import Expansion
 from btplan.bt import BehaviorTree
 from btplan.bt.formats import dump
 from btplan.cli.app import app, guarded, stderr

@@ -12,14 +12,14 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from btplan import api
+from btplan import acting
 from btplan.bt import Node, Status
 from btplan.cli.app import EXIT_FAILED, app, guarded, stderr
 from btplan.errors import InputError, Span, WorldError
 from btplan.io import read_text, write_atomic
-from btplan.live import LiveView
+from btplan.acting.live_view import LiveView
 from btplan.model import Task
-from btplan.trace import RunSummary, TickRecord, records_to_jsonl
+from btplan.acting.records import RunSummary, TickRecord, records_to_jsonl
 from btplan.worlds.agents import Agent
 from btplan.worlds.disturb import DisturbSpec, parse_scenario, parse_spec
 
@@ -66,7 +66,7 @@ def run(
     """
     if len(files) > 2:
         raise InputError("give a domain and at most one problem file", Span(files[2], 1, 1))
-    task = api.load(*files)
+    task = acting.load(*files)
     specs = [parse_spec(text, Span("--disturb", 1, 1)) for text in disturb or []]
     scene: str | None = None
     if scenario is not None:
@@ -91,16 +91,16 @@ def run(
 
 
 def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Agent], seed: int,
-         max_ticks: int, rate: float | None, quiet: bool) -> api.RunOutcome:
+         max_ticks: int, rate: float | None, quiet: bool) -> acting.RunOutcome:
     if quiet:
         view = None
     elif stderr.is_terminal:
         with LiveView(stderr) as live:
-            return api.run(task, disturb=specs, agents=scene_agents, world=world, seed=seed,
+            return acting.run(task, disturb=specs, agents=scene_agents, world=world, seed=seed,
                            max_ticks=max_ticks, view=live.show, rate=rate)
     else:
         view = progress_line
-    return api.run(task, disturb=specs, agents=scene_agents, world=world, seed=seed,
+    return acting.run(task, disturb=specs, agents=scene_agents, world=world, seed=seed,
                    max_ticks=max_ticks, view=view, rate=rate)
 
 

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from btplan.api import load, plan
+from btplan.acting.offline import load, plan
 from btplan.bt import RUNNING, SUCCESS
 from btplan.bt.formats.btcpp import dump_xml, load_xml
 from btplan.worlds.symbolic import SymbolicWorld

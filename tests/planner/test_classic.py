@@ -7,7 +7,7 @@ returned tree, ticked from the initial state with no planning, must reach the go
 
 from __future__ import annotations
 
-from btplan.api import load, plan
+from btplan.acting.offline import load, plan
 from btplan.bt import SUCCESS
 from btplan.model import GroundAction, Task
 from btplan.worlds.symbolic import SymbolicWorld

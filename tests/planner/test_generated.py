@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import pytest
 
-from btplan.api import plan
+from btplan.acting.offline import plan
 from btplan.lang.generators import GENERATORS
 from btplan.model import Task
 from tests.planner.test_classic import replay, validate

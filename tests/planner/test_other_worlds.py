@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from btplan.blend import BlendedLoop
+from btplan.acting.loop import BlendedLoop
 from btplan.bt import RUNNING, SUCCESS, LeafKey, Status
 from btplan.lang import load
 from btplan.model import ActionTemplate, Atom, Parameter, Task, instantiate

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from btplan.blend import BlendedLoop
+from btplan.acting.loop import BlendedLoop
 from btplan.lang import load
 from btplan.model import Atom
 from btplan.worlds.symbolic import SymbolicWorld

@@ -8,7 +8,7 @@ from typing import Any
 import pytest
 
 from btplan import run
-from btplan.api import load
+from btplan.acting.offline import load
 from btplan.errors import InputError
 from btplan.model import Atom
 from btplan.planner import PlannerOptions

@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 from types import ModuleType
 
-from btplan.api import load
+from btplan.acting.offline import load
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from btplan.acting import run
-from btplan.api import load
-from btplan.trace import records_to_jsonl
+from btplan.acting.online import run
+from btplan.acting.offline import load
+from btplan.acting.records import records_to_jsonl
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 TASK = load(str(DOMAINS / "pick_place.bt"))

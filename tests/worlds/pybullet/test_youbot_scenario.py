@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 from sim_scenes import YOUBOT_SCENE, write_scene, youbot_task
 
-from btplan.blend import BlendedLoop, TickReport
+from btplan.acting.loop import BlendedLoop, TickReport
 from btplan.worlds.pybullet import PyBulletWorld, open_world
 
 TASK = youbot_task()

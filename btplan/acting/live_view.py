@@ -21,7 +21,7 @@ from rich.text import Text
 from rich.tree import Tree
 
 from btplan.bt import Node, Status
-from btplan.trace import TickRecord
+from btplan.acting.records import TickRecord
 from btplan.worlds.agents import Disturbance
 
 STYLE = {
