@@ -75,3 +75,14 @@ class BudgetExceededError(PlanningError):
 
 class WorldError(BtplanError):
     """A world backend cannot do what it was asked (missing extra, bad scene)."""
+
+
+class Interrupted(BtplanError):
+    """The user stopped the work (Ctrl-C, a termination signal) at a tick boundary.
+
+    `progress` says what was done by then, for the summary the CLI prints.
+    """
+
+    def __init__(self, progress: str) -> None:
+        super().__init__(f"interrupted after {progress}")
+        self.progress = progress

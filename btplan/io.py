@@ -7,6 +7,7 @@ the target, so a crash or a bad input never leaves half a file behind.
 from __future__ import annotations
 
 import os
+import stat
 import sys
 import tempfile
 from pathlib import Path
@@ -49,15 +50,45 @@ def write_atomic(path: str, text: str) -> None:
         sys.stdout.write(text)
         sys.stdout.flush()
         return
-    target = Path(path)
-    folder = target.parent if str(target.parent) else Path(".")
+    write_bytes_atomic(path, text.encode("utf-8"))
+
+
+def write_bytes_atomic(path: str, data: bytes) -> None:
+    """Write `data` to a temporary file beside `path`, then rename it over `path`.
+
+    The temporary file is private (mkstemp), so it gets the mode a plain `open` would
+    have given: the existing file's mode, or 0666 less the user's umask. Otherwise every
+    output would be readable by its owner only. A symbolic link is written through (the
+    file it points to is replaced, not the link), and a target that is not a regular
+    file (/dev/null, a named pipe, a terminal) is written in place: renaming over it
+    would replace a device with a file.
+    """
+    target = Path(os.path.realpath(path))
+    try:
+        info: os.stat_result | None = target.stat()
+    except OSError:
+        info = None
+    if info is not None and not stat.S_ISREG(info.st_mode):
+        with open(target, "wb") as stream:
+            stream.write(data)
+        return
+    folder = target.parent
     if not folder.is_dir():
         raise InputError("the folder for this output does not exist", Span(path, 1, 1))
+    mode = stat.S_IMODE(info.st_mode) if info is not None else 0o666 & ~current_umask()
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(text)
+        with os.fdopen(fd, "wb") as handle:
+            handle.write(data)
+            os.fchmod(handle.fileno(), mode)
         os.replace(tmp, target)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def current_umask() -> int:
+    """The process umask; reading it means setting it, so it is put back at once."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask

@@ -21,7 +21,7 @@ from btplan.acting.online import RunOutcome as RunOutcome  # noqa: PLC0414
 from btplan.acting.online import run as run  # noqa: PLC0414
 from btplan.acting.loop import BlendedLoop, Expansion, TickReport
 from btplan.bt import BehaviorTree, LeafKey
-from btplan.errors import BudgetExceededError, PlanningError
+from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
 from btplan.planner import PlannerOptions
 from btplan.worlds.symbolic import SymbolicWorld
@@ -68,11 +68,13 @@ def plan(
     timeout: float | None = None,
     options: PlannerOptions | None = None,
     on_expansion: Callable[[BehaviorTree, Expansion], None] | None = None,
+    stop: Callable[[], bool] | None = None,
 ) -> PlanResult:
     """Backchain a BT for `task` by planning and acting in the symbolic world.
 
     Raises a PlanningError (NoAchieverError, UnresolvableConflictError,
-    NoProgressError, BudgetExceededError) with a reason when no tree is found.
+    NoProgressError, BudgetExceededError) with a reason when no tree is found, and
+    Interrupted when `stop`, asked after every tick, says to stop.
     """
     opts = options or PlannerOptions()
     if max_expansions is not None:
@@ -85,7 +87,7 @@ def plan(
     for strategy in strategies:
         try:
             result = _attempt(task, seed, strategy, max_ticks, deadline, timeout, on_expansion,
-                              started)
+                              started, stop)
         except BudgetExceededError:
             if found is not None:
                 return found
@@ -129,6 +131,7 @@ def _attempt(
     timeout: float | None,
     on_expansion: Callable[[BehaviorTree, Expansion], None] | None,
     started: float,
+    stop: Callable[[], bool] | None = None,
 ) -> PlanResult:
     """Rounds of Algorithm 1 from the initial state until one needs no expansion."""
     groundings: dict[LeafKey, GroundAction] = {}
@@ -137,6 +140,10 @@ def _attempt(
     ticks_left = max_ticks
 
     def watch(report: TickReport) -> None:
+        if stop is not None and stop():
+            loop.tree.halt(loop.world)
+            raise Interrupted(f"{len(loop.expansions)} expansions and {loop.ticks} ticks "
+                              f"(tree of {len(loop.tree.nodes())} nodes)")
         if deadline is not None and time.perf_counter() > deadline:
             raise BudgetExceededError(f"the time budget ({timeout:g} s) ran out")
         if on_expansion is not None:

@@ -40,6 +40,9 @@ class RunOutcome:
     tree: BehaviorTree
     world: Any
     records: list[TickRecord] = field(default_factory=list)
+    interrupted: bool = False
+    halted_on_stop: tuple[str, ...] = ()
+    """The actions that were running when the run was interrupted, and were halted."""
 
     @property
     def ticks(self) -> int:
@@ -62,8 +65,10 @@ class _Observer:
     """Turns what the loop and the world did around one tick into a TickRecord."""
 
     def __init__(self, world: Any, agents: Sequence[Agent], tree: BehaviorTree,
-                 view: TickView | None, rate: float | None) -> None:
+                 view: TickView | None, rate: float | None,
+                 stop: Callable[[], bool] | None = None) -> None:
         self.world, self.agents, self.tree, self.view = world, list(agents), tree, view
+        self.stop = stop
         self.period = 1.0 / rate if rate else 0.0
         self.recorder = TickRecorder()
         self.recorder.attach(tree)
@@ -77,10 +82,14 @@ class _Observer:
     def before(self, tick: int) -> None:
         """Pace the run, let the agents act, and remember where the logs stood."""
         if self.period:
-            delay = self._next - time.monotonic()
-            if delay > 0:
-                time.sleep(delay)
+            # in short naps, so that a stop request does not wait for a slow rate
+            while (delay := self._next - time.monotonic()) > 0:
+                if self.stop is not None and self.stop():
+                    break
+                time.sleep(min(delay, 0.05))
             self._next = max(self._next, time.monotonic()) + self.period
+        if self.stop is not None and self.stop():
+            raise _Stop
         self._marks = {name: len(getattr(self.world, name)) for name in _LOGS}
         self._disturbances = act_all(self.agents, self.world, tick)
         self._ids = {f"n{i}": node for i, node in enumerate(self.tree.nodes())}
@@ -113,6 +122,10 @@ class _Observer:
         return tuple(str(a) for a in getattr(self.world, log)[self._marks.get(log, 0):])
 
 
+class _Stop(Exception):
+    """Raised between ticks when the caller asks the run to stop."""
+
+
 def note(expansion: Expansion) -> ExpansionNote:
     """An expansion as the trace shows it: the condition, its achievers, the moves made."""
     return ExpansionNote(
@@ -134,19 +147,29 @@ def run_task(
     rate: float | None = None,
     failure_probability: Mapping[str, float] | None = None,
     options: PlannerOptions | None = None,
+    stop: Callable[[], bool] | None = None,
 ) -> RunOutcome:
     """Plan and act at once (Algorithm 1) in `world`, with `agents` acting before each tick.
 
     Without a world, the symbolic one is used, seeded with `seed`. The loop never
     rebuilds the tree: it only grows on FAILURE, as the paper's Problem 1 asks.
+    `stop` is asked before every tick; when it says yes, the tree is halted (the
+    world stops what the robot was doing) and the outcome is marked interrupted.
     """
     if world is None:
         world = SymbolicWorld(task, seed=seed, failure_probability=failure_probability)
     loop = BlendedLoop(task, world, options)
-    observer = _Observer(world, agents, loop.tree, view, rate)
+    observer = _Observer(world, agents, loop.tree, view, rate, stop)
+    interrupted = False
+    halted_on_stop: tuple[str, ...] = ()
     try:
         outcome = loop.run(max_ticks, before_tick=observer.before, on_tick=observer.after)
         reached, reason = outcome.reached, outcome.reason
+    except _Stop:
+        reached, reason, interrupted = False, "interrupted", True
+        mark = len(world.halted) if hasattr(world, "halted") else 0
+        loop.tree.halt(world)
+        halted_on_stop = tuple(str(a) for a in getattr(world, "halted", [])[mark:])
     except PlanningError as error:
         # The tree cannot grow any further (no achiever, going round in circles): the run
         # ends as not reached, and its records, this last tick included, tell why.
@@ -156,7 +179,8 @@ def run_task(
     finally:
         observer.recorder.detach(loop.tree)
     return RunOutcome(reached=reached, reason=reason, tree=loop.tree, world=world,
-                      records=observer.records)
+                      records=observer.records, interrupted=interrupted,
+                      halted_on_stop=halted_on_stop)
 
 
 def run(
@@ -171,6 +195,8 @@ def run(
     rate: float | None = None,
     failure_probability: Mapping[str, float] | None = None,
     options: PlannerOptions | None = None,
+    stop: Callable[[], bool] | None = None,
+    world_name: str = "this world",
 ) -> RunOutcome:
     """Run `task` in a world with disturbances: the library form of `btplan run`.
 
@@ -178,13 +204,15 @@ def run(
     (syntax in docs/cli.md), checked against the task first; `agents` are any other
     agents (a simulator's scripted events). Returns the outcome with one record per
     tick; raises InputError for a bad spec. `options` are the planner's
-    (`PlannerOptions.paper()` for the published algorithms).
+    (`PlannerOptions.paper()` for the published algorithms); `stop` is asked before
+    each tick whether to end the run there (see `run_task`); `world_name` is how
+    messages call the world ("the PyBullet world").
     """
     specs = [parse_spec(s) if isinstance(s, str) else s for s in disturb]
     check_specs(specs, task)
     if world is not None:
-        check_world(specs, world, type(world).__name__)
+        check_world(specs, world, world_name)
     everyone = [*agents_from_specs(specs, seed), *agents]
     return run_task(task, world=world, agents=everyone, seed=seed, max_ticks=max_ticks,
                     view=view, rate=rate, failure_probability=failure_probability,
-                    options=options)
+                    options=options, stop=stop)

@@ -11,7 +11,8 @@ import typer
 from btplan.bt.formats import dump, json_schema, load_tree
 from btplan.cli.app import app, guarded
 from btplan.errors import InputError, Span
-from btplan.io import STDIO, read_text, write_atomic
+from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
+from btplan.io import read_text
 
 
 class Format(str, Enum):
@@ -35,15 +36,25 @@ def input_format(path: str, text: str) -> str:
                      hint="save it as .json or .xml")
 
 
-@app.command()
+EXAMPLES = """Examples:
+
+  btplan export xml tree.json -o tree.xml            # BT.CPP v4, for Groot2
+  btplan export dot tree.xml | dot -Tsvg > tree.svg
+  btplan export ascii tree.json --status
+  btplan export json --schema
+"""
+
+
+@app.command(epilog=EXAMPLES)
 @guarded
 def export(
     fmt: Annotated[Format, typer.Argument(metavar="FORMAT", help="xml, dot, json or ascii.")],
     tree: Annotated[str | None, typer.Argument(
         metavar="TREE", help="A saved tree (.json or BT.CPP .xml); '-' reads standard input.",
         show_default=False)] = None,
-    out: Annotated[str, typer.Option("-o", "--out", help="Output file; '-' is standard output.")
-                   ] = STDIO,
+    out: Annotated[str, typer.Option(
+        "-o", "--output", metavar="FILE", help="Write to FILE ('-': standard output).")] = STDIO,
+    out_alias: Annotated[str | None, typer.Option("--out", hidden=True)] = None,
     schema: Annotated[bool, typer.Option(
         "--schema", help="Print the JSON schema of saved trees instead (json only).")] = False,
     status: Annotated[bool, typer.Option(
@@ -51,6 +62,8 @@ def export(
                       ] = False,
 ) -> None:
     """Convert a saved tree: BT.CPP v4 XML, graphviz DOT, btplan JSON or a text view."""
+    out = out_alias if out_alias is not None else out
+    check_outputs(Output("-o/--output", out))
     if schema:
         if fmt is not Format.json:
             raise InputError("--schema describes the JSON format", hint="use: export json --schema")

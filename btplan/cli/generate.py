@@ -2,19 +2,24 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from enum import Enum
 from typing import Annotated
 
 import typer
 
-from btplan.cli.app import app, guarded
+from btplan.cli.app import app, guarded, stderr
+from btplan.cli.interrupts import Interrupts
+from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.errors import InputError
-from btplan.io import STDIO, write_atomic
 from btplan.lang.generators import blocksworld, gripper, logistics, render
 from btplan.model import Domain, Problem
 
 generate_app = typer.Typer(
     help="Generate classic planning problems (blocksworld, gripper, logistics) from a seed.",
+    epilog="Examples:\n\n"
+           "  btplan generate blocksworld --blocks 8 --seed 3 -o bw.pddl\n"
+           "  btplan generate gripper --balls 6 --format bt --problem-only\n",
     no_args_is_help=True,
 )
 app.add_typer(generate_app, name="generate")
@@ -25,19 +30,26 @@ class Format(str, Enum):
     bt = "bt"
 
 
-Seed = Annotated[int, typer.Option("--seed", help="Random seed: the same seed, the same text.")]
-Fmt = Annotated[Format, typer.Option("--format", help="pddl, or btplan's own .bt language.")]
+Seed = Annotated[int, typer.Option(
+    "--seed", metavar="N", help="Random seed: the same seed, the same text.")]
+Fmt = Annotated[Format, typer.Option("-f", "--format", help="pddl, or btplan's own .bt language.")]
 DomainOnly = Annotated[bool, typer.Option("--domain-only", help="Write only the domain.")]
 ProblemOnly = Annotated[bool, typer.Option("--problem-only", help="Write only the problem.")]
-Out = Annotated[str, typer.Option("-o", "--output", help="Output file; '-' is standard output.")]
+Out = Annotated[str, typer.Option(
+    "-o", "--output", metavar="FILE", help="Write to FILE ('-': standard output).")]
 
 
-def emit(
-    pair: tuple[Domain, Problem], fmt: Format, domain_only: bool, problem_only: bool, out: str
-) -> None:
+def emit(make: Callable[[], tuple[Domain, Problem]], fmt: Format, domain_only: bool,
+         problem_only: bool, out: str) -> None:
+    """Check the flags and the output, generate, and write unless a signal came meanwhile."""
     if domain_only and problem_only:
         raise InputError("--domain-only and --problem-only exclude each other")
-    domain_text, problem_text = render(*pair, fmt=fmt.value)
+    check_outputs(Output("-o/--output", out))
+    with Interrupts() as interrupted:
+        domain_text, problem_text = render(*make(), fmt=fmt.value)
+    if interrupted():
+        stderr.print("[bold yellow]interrupted[/]: nothing written")
+        raise typer.Exit(interrupted.exit_code)
     if domain_only:
         text = domain_text
     elif problem_only:
@@ -56,7 +68,7 @@ def _size(value: int, flag: str, least: int = 1) -> int:
 @generate_app.command("blocksworld")
 @guarded
 def generate_blocksworld(
-    blocks: Annotated[int, typer.Option("--blocks", help="Number of blocks.")] = 5,
+    blocks: Annotated[int, typer.Option("--blocks", metavar="N", help="Number of blocks.")] = 5,
     seed: Seed = 0,
     fmt: Fmt = Format.pddl,
     domain_only: DomainOnly = False,
@@ -64,14 +76,15 @@ def generate_blocksworld(
     out: Out = STDIO,
 ) -> None:
     """Random towers to random towers, with the classic four operators."""
-    emit(blocksworld(_size(blocks, "--blocks"), seed), fmt, domain_only, problem_only, out)
+    n = _size(blocks, "--blocks")
+    emit(lambda: blocksworld(n, seed), fmt, domain_only, problem_only, out)
 
 
 @generate_app.command("gripper")
 @guarded
 def generate_gripper(
-    balls: Annotated[int, typer.Option("--balls", help="Number of balls.")] = 4,
-    rooms: Annotated[int, typer.Option("--rooms", help="Number of rooms.")] = 2,
+    balls: Annotated[int, typer.Option("--balls", metavar="N", help="Number of balls.")] = 4,
+    rooms: Annotated[int, typer.Option("--rooms", metavar="N", help="Number of rooms.")] = 2,
     seed: Seed = 0,
     fmt: Fmt = Format.pddl,
     domain_only: DomainOnly = False,
@@ -79,17 +92,20 @@ def generate_gripper(
     out: Out = STDIO,
 ) -> None:
     """A two-handed robot carries balls between rooms."""
-    pair = gripper(_size(balls, "--balls"), seed, rooms=_size(rooms, "--rooms", 2))
-    emit(pair, fmt, domain_only, problem_only, out)
+    n, r = _size(balls, "--balls"), _size(rooms, "--rooms", 2)
+    emit(lambda: gripper(n, seed, rooms=r), fmt, domain_only, problem_only, out)
 
 
 @generate_app.command("logistics")
 @guarded
 def generate_logistics(
-    packages: Annotated[int, typer.Option("--packages", help="Number of packages.")] = 3,
-    cities: Annotated[int, typer.Option("--cities", help="Number of cities.")] = 2,
-    locations: Annotated[int, typer.Option("--locations", help="Places per city.")] = 2,
-    airplanes: Annotated[int, typer.Option("--airplanes", help="Number of airplanes.")] = 1,
+    packages: Annotated[int, typer.Option(
+        "--packages", metavar="N", help="Number of packages.")] = 3,
+    cities: Annotated[int, typer.Option("--cities", metavar="N", help="Number of cities.")] = 2,
+    locations: Annotated[int, typer.Option(
+        "--locations", metavar="N", help="Places per city.")] = 2,
+    airplanes: Annotated[int, typer.Option(
+        "--airplanes", metavar="N", help="Number of airplanes.")] = 1,
     seed: Seed = 0,
     fmt: Fmt = Format.pddl,
     domain_only: DomainOnly = False,
@@ -97,11 +113,8 @@ def generate_logistics(
     out: Out = STDIO,
 ) -> None:
     """Trucks within cities, airplanes between airports, packages to deliver."""
-    pair = logistics(
-        _size(packages, "--packages"),
-        seed,
-        cities=_size(cities, "--cities"),
-        locations=_size(locations, "--locations"),
-        airplanes=_size(airplanes, "--airplanes"),
-    )
-    emit(pair, fmt, domain_only, problem_only, out)
+    sizes = (_size(packages, "--packages"), _size(cities, "--cities"),
+             _size(locations, "--locations"), _size(airplanes, "--airplanes"))
+    emit(lambda: logistics(sizes[0], seed, cities=sizes[1], locations=sizes[2],
+                           airplanes=sizes[3]),
+         fmt, domain_only, problem_only, out)

@@ -9,14 +9,16 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+from rich.markup import escape
 
 from btplan.acting.offline import PlanResult, load, plan
 from btplan.acting.loop import Expansion
 from btplan.bt import BehaviorTree
 from btplan.bt.formats import dump
 from btplan.cli.app import app, guarded, stderr
-from btplan.errors import InputError, Span
-from btplan.io import STDIO, write_atomic
+from btplan.cli.interrupts import Interrupts
+from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
+from btplan.errors import InputError, Interrupted
 from btplan.planner import PlannerOptions
 
 
@@ -27,41 +29,65 @@ class Format(str, Enum):
     ascii = "ascii"
 
 
-@app.command(name="plan")
+EXAMPLES = """Examples:
+
+  btplan plan domains/pick_place.bt                      # the tree as text on a terminal
+  btplan plan domains/pick_place.bt -o tree.xml          # BehaviorTree.CPP v4 XML
+  btplan plan domain.pddl problem.pddl -f dot | dot -Tsvg > tree.svg
+  btplan plan domains/blocksworld.bt --plan-out sas_plan --timeout 60
+"""
+
+
+@app.command(name="plan", epilog=EXAMPLES)
 @guarded
 def plan_command(
     domain: Annotated[str, typer.Argument(
-        metavar="DOMAIN", help="Domain (.bt or .pddl), or domain and problem in one .bt file.")],
+        metavar="DOMAIN", help="Domain (.bt or .pddl), or domain and problem in one .bt file; "
+        "'-' reads standard input.")],
     problem: Annotated[str | None, typer.Argument(
-        metavar="[PROBLEM]", help="Problem file, when it is not in DOMAIN.", show_default=False)
+        metavar="PROBLEM", help="Problem file, when it is not in DOMAIN.", show_default=False)
     ] = None,
     fmt: Annotated[Format | None, typer.Option(
-        "--format", "-f",
+        "-f", "--format",
         help="Tree format: ascii on a terminal, json when piped, by extension for -o.",
         show_default=False)] = None,
-    out: Annotated[str, typer.Option("-o", "--out", help="Write the tree here ('-': stdout).")
+    out: Annotated[str, typer.Option("-o", "--output", metavar="FILE",
+                                     help="Write the tree to FILE ('-': standard output).")
                    ] = STDIO,
+    out_alias: Annotated[str | None, typer.Option("--out", hidden=True)] = None,
     plan_out: Annotated[str | None, typer.Option(
-        "--plan-out", help="Write the executed actions in IPC plan format.", show_default=False)
+        "--plan-out", metavar="FILE", show_default=False,
+        help="Write the actions of the final run in IPC plan format ('-': standard output).")
     ] = None,
     trace_expansions: Annotated[str | None, typer.Option(
         "--trace-expansions", metavar="DIR",
         help="Write the tree after every expansion (DOT and JSON) into DIR.", show_default=False)
     ] = None,
-    seed: Annotated[int, typer.Option(help="Seed of the symbolic world.")] = 0,
-    max_expansions: Annotated[int, typer.Option(help="Give up after this many expansions.")
-                              ] = 1000,
-    max_ticks: Annotated[int, typer.Option(help="Give up after this many ticks.")] = 100_000,
+    seed: Annotated[int, typer.Option("--seed", metavar="N",
+                                      help="Seed of the symbolic world.")] = 0,
+    max_expansions: Annotated[int, typer.Option(
+        "--max-expansions", metavar="N", help="Give up after N expansions.")] = 1000,
+    max_ticks: Annotated[int, typer.Option("--max-ticks", metavar="N",
+                                           help="Give up after N ticks.")] = 100_000,
     max_alternatives: Annotated[int | None, typer.Option(
+        "--max-alternatives", metavar="N",
         help="Achievers kept per condition (default 4, widened once if planning fails).",
         show_default=False)] = None,
     paper: Annotated[bool, typer.Option(
         "--paper", help="Algorithms 1-3 exactly as published, without btplan's extensions.")
     ] = False,
     timeout: Annotated[float | None, typer.Option(
-        help="Give up after this many seconds.", show_default=False)] = None,
+        "--timeout", metavar="SECONDS", help="Give up after SECONDS seconds (exit 1).",
+        show_default=False)] = None,
+    quiet: Annotated[bool, typer.Option("-q", "--quiet", help="No summary on standard error.")
+                     ] = False,
 ) -> None:
-    """Build a reactive BT for the problem by planning and acting in the symbolic world."""
+    """Build a reactive BT for the problem by planning and acting in the symbolic world.
+
+    The tree goes to standard output (or -o FILE), the summary to standard error.
+    Ctrl-C stops at the next tick: nothing is written, the summary says how far it got.
+    """
+    out = out_alias if out_alias is not None else out
     limits = [("--max-expansions", max_expansions), ("--max-ticks", max_ticks)]
     if max_alternatives is not None:
         limits.append(("--max-alternatives", max_alternatives))
@@ -70,21 +96,31 @@ def plan_command(
             raise InputError(f"{name} must be at least 1, got {value}")
     if timeout is not None and timeout <= 0:
         raise InputError(f"--timeout must be positive, got {timeout:g}")
-    folder = _trace_folder(trace_expansions)
-    task = load(*([domain] if problem is None else [domain, problem]))
+    check_outputs(Output("-o/--output", out), Output("--plan-out", plan_out),
+                  Output("--trace-expansions", trace_expansions, folder=True))
     chosen = fmt.value if fmt is not None else default_format(out)
     snapshots: list[tuple[str, str]] = []
 
     def trace(tree: BehaviorTree, expansion: Expansion) -> None:
-        if folder is not None:
+        if trace_expansions is not None:
             snapshots.append((dump(tree, "dot"), dump(tree, "json")))
 
     options = PlannerOptions.paper() if paper else None
     if max_alternatives is not None:
         options = replace(options or PlannerOptions(), max_alternatives=max_alternatives)
-    result = plan(task, seed=seed, max_expansions=max_expansions, max_ticks=max_ticks,
-                  timeout=timeout, options=options, on_expansion=trace)
-    if folder is not None:
+    with Interrupts() as interrupted:
+        try:
+            task = load(*([domain] if problem is None else [domain, problem]))
+            result = plan(task, seed=seed, max_expansions=max_expansions, max_ticks=max_ticks,
+                          timeout=timeout, options=options, on_expansion=trace,
+                          stop=interrupted)
+        except Interrupted as error:
+            stderr.print(f"[bold yellow]interrupted[/]: {escape(error.progress)}; "
+                         "nothing written")
+            raise typer.Exit(interrupted.exit_code) from None
+    if trace_expansions is not None:
+        folder = Path(trace_expansions)
+        folder.mkdir(parents=True, exist_ok=True)
         # Only the attempt that succeeded: plan() may have started over with wider options.
         kept = snapshots[len(snapshots) - len(result.expansions):] if result.expansions else []
         for number, (dot, saved) in enumerate(kept, start=1):
@@ -95,7 +131,8 @@ def plan_command(
     write_atomic(out, text if text.endswith("\n") else text + "\n")
     if plan_out is not None:
         write_atomic(plan_out, "".join(a.ipc() + "\n" for a in result.executed))
-    stderr.print(summary(result))
+    if not quiet:
+        stderr.print(summary(result))
 
 
 def default_format(out: str) -> str:
@@ -113,13 +150,3 @@ def summary(result: PlanResult) -> str:
         f"resolved ({s.moves} moves), tree of {s.tree_size} nodes, {s.actions_executed} actions "
         f"executed, {s.seconds:.3f} s"
     )
-
-
-def _trace_folder(path: str | None) -> Path | None:
-    if path is None:
-        return None
-    folder = Path(path)
-    if folder.exists() and not folder.is_dir():
-        raise InputError("--trace-expansions needs a folder, this is a file", Span(path, 1, 1))
-    folder.mkdir(parents=True, exist_ok=True)
-    return folder

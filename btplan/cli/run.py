@@ -3,10 +3,13 @@
 from __future__ import annotations
 
 import importlib
-from collections.abc import Mapping
+import sys
+import time
+from collections.abc import Callable, Mapping
 from enum import Enum
 from pathlib import Path
-from typing import Annotated, Any
+from types import TracebackType
+from typing import Annotated, Any, Self
 
 import typer
 from rich.markup import escape
@@ -15,11 +18,13 @@ from rich.table import Table
 from btplan import acting
 from btplan.bt import Node, Status
 from btplan.cli.app import EXIT_FAILED, app, guarded, stderr
+from btplan.cli.interrupts import Interrupts
+from btplan.cli.outputs import STDIO, LineStream, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Span, WorldError
-from btplan.io import read_text, write_atomic
+from btplan.io import read_text
 from btplan.acting.live_view import LiveView
 from btplan.model import Task
-from btplan.acting.records import RunSummary, TickRecord, records_to_jsonl
+from btplan.acting.records import TickRecord
 from btplan.worlds.agents import Agent
 from btplan.worlds.disturb import DisturbSpec, parse_scenario, parse_spec
 
@@ -29,44 +34,71 @@ class Sim(str, Enum):
     pybullet = "pybullet"
 
 
-@app.command()
+EXAMPLES = """Examples:
+
+  btplan run domains/pick_place.bt --disturb undo:Pick@11 --rate 4
+  btplan run domains/pick_place_obstacle.bt --scenario examples/example2.dist
+  btplan run domains/youbot.bt --sim pybullet -q --trace run.jsonl --plan-out p.plan
+  btplan run domains/pick_place.bt --plan-out - | wc -l
+"""
+
+
+@app.command(epilog=EXAMPLES)
 @guarded
 def run(
-    files: Annotated[list[str], typer.Argument(
-        help="The domain, and the problem if it is in another file (.bt or .pddl).")],
-    sim: Annotated[Sim, typer.Option(help="The world to act in.")] = Sim.symbolic,
+    domain: Annotated[str, typer.Argument(
+        metavar="DOMAIN", help="Domain (.bt or .pddl), or domain and problem in one .bt file.")],
+    problem: Annotated[str | None, typer.Argument(
+        metavar="PROBLEM", help="Problem file, when it is not in DOMAIN.", show_default=False)
+    ] = None,
+    sim: Annotated[Sim, typer.Option("--sim", help="The world to act in.")] = Sim.symbolic,
     disturb: Annotated[list[str] | None, typer.Option(
         "--disturb", metavar="SPEC",
         help="An external agent, e.g. undo@5, help:Pick(cube)@3, set:free(t)@p=0.05, "
              "fail:MoveTo@2 (repeatable; see docs/cli.md).")] = None,
     scenario: Annotated[str | None, typer.Option(
+        "--scenario", metavar="FILE",
         help="A file of disturbance specs, one per line; with --sim pybullet, a scene "
              "(.toml file, or the name of a shipped scene).")] = None,
-    seed: Annotated[int, typer.Option(help="Seed of every random choice in the run.")] = 0,
-    max_ticks: Annotated[int, typer.Option(min=1, help="Give up after this many ticks.")] = 1000,
+    seed: Annotated[int, typer.Option(
+        "--seed", metavar="N", help="Seed of every random choice in the run.")] = 0,
+    max_ticks: Annotated[int, typer.Option(
+        "--max-ticks", min=1, metavar="N", help="Give up after N ticks (exit 1).")] = 1000,
+    timeout: Annotated[float | None, typer.Option(
+        "--timeout", metavar="SECONDS", help="Give up after SECONDS seconds (exit 1).",
+        show_default=False)] = None,
     fail_prob: Annotated[list[str] | None, typer.Option(
         "--fail-prob", metavar="ACTION=P",
         help="Make each tick of an action fail with probability P (repeatable).")] = None,
     trace: Annotated[str | None, typer.Option(
-        metavar="FILE.jsonl", help="Write one JSON line per tick.")] = None,
+        "--trace", metavar="FILE",
+        help="Write one JSON line per tick, as it happens ('-': standard output).")] = None,
     plan_out: Annotated[str | None, typer.Option(
-        metavar="PLAN", help="Write the executed actions in IPC plan format ('-': stdout).")] = None,
+        "--plan-out", metavar="FILE",
+        help="Write the executed actions in IPC plan format ('-': standard output).")] = None,
     rate: Annotated[float | None, typer.Option(
-        min=0.01, metavar="HZ", help="Ticks per second, to watch (default: as fast as possible).")
-    ] = None,
-    quiet: Annotated[bool, typer.Option(help="No live view and no progress; the summary only.")
-                     ] = False,
-    gui: Annotated[bool, typer.Option(help="Open the PyBullet window (--sim pybullet).")] = False,
+        "--rate", min=0.01, metavar="HZ",
+        help="Ticks per second, to watch (default: as fast as possible).")] = None,
+    quiet: Annotated[bool, typer.Option(
+        "-q", "--quiet", help="No live view and no progress; the summary only.")] = False,
+    gui: Annotated[bool, typer.Option(
+        "--gui", help="Open the PyBullet window (--sim pybullet).")] = False,
     record: Annotated[str | None, typer.Option(
-        metavar="FILE", help="Record the PyBullet run to a file (--sim pybullet).")] = None,
+        "--record", metavar="FILE.gif", help="Record the PyBullet run to a GIF (--sim pybullet).")
+    ] = None,
 ) -> None:
     """Run Algorithm 1 online: tick the tree, expand it when it fails, let agents disturb it.
 
-    Exit 0 when the goal is reached, 1 when it is not within --max-ticks, 2 on bad input.
+    Exit 0 when the goal is reached, 1 when it is not within --max-ticks or --timeout,
+    2 on bad input. Ctrl-C (or SIGTERM) stops at the next tick: the running action is
+    halted, the trace and the plan keep every finished tick, the summary is printed,
+    and the exit code is 130 (143).
     """
-    if len(files) > 2:
-        raise InputError("give a domain and at most one problem file", Span(files[2], 1, 1))
-    task = acting.load(*files)
+    if timeout is not None and timeout <= 0:
+        raise InputError(f"--timeout must be positive, got {timeout:g}")
+    check_outputs(Output("--trace", trace), Output("--plan-out", plan_out),
+                  Output("--record", record))
+    task = acting.load(*([domain] if problem is None else [domain, problem]))
     specs = [parse_spec(text, Span("--disturb", 1, 1)) for text in disturb or []]
     scene: str | None = None
     if scenario is not None:
@@ -75,33 +107,92 @@ def run(
         else:
             specs.extend(parse_scenario(read_text(scenario), scenario))
     world, scene_agents = open_world(task, sim, scene, seed, gui, record, probabilities(fail_prob))
-    try:
-        result = _act(task, world, specs, scene_agents, seed, max_ticks, rate, quiet)
-    finally:
-        if hasattr(world, "close"):
-            world.close()
-    if trace is not None:
-        write_atomic(trace, records_to_jsonl(result.records))
-    if plan_out is not None:
-        write_atomic(plan_out, result.plan_text())
-    stderr.print(summary_table(result.reached, result.reason, result.summary()))
+    deadline = None if timeout is None else time.monotonic() + timeout
+    with Interrupts() as interrupted, RunFiles(trace, plan_out, world) as files:
+
+        def stop() -> bool:
+            return interrupted() or (deadline is not None and time.monotonic() > deadline)
+
+        try:
+            result = _act(task, world, specs, scene_agents, seed, max_ticks, rate, quiet,
+                          files.add, stop, WORLD_NAMES[sim])
+        finally:
+            if hasattr(world, "close"):
+                world.close()  # closes a recording into a playable file, interrupted or not
+    if result.interrupted and not interrupted():
+        result.reason = f"the time budget ({timeout:g} s) ran out"
+    stderr.print(summary_table(result))
+    if interrupted():
+        raise typer.Exit(interrupted.exit_code)
     if not result.reached:
         stderr.print(f"[bold red]failed:[/] {escape(result.reason)}")
         raise typer.Exit(EXIT_FAILED)
 
 
+WORLD_NAMES = {"symbolic": "the symbolic world", "pybullet": "the PyBullet world"}
+
+
+class RunFiles:
+    """The files that record a run in progress: the trace and the plan so far.
+
+    Both are brought up to date after every tick, so an interrupted (or killed) run
+    leaves what it did: the trace gets one line per tick, the plan file is replaced
+    whenever an action finishes (on standard output, the new actions are appended).
+    """
+
+    def __init__(self, trace: str | None, plan_out: str | None, world: Any) -> None:
+        self.trace = LineStream(trace) if trace is not None else None
+        self.plan_out, self.world = plan_out, world
+        self._done = 0
+
+    def __enter__(self) -> Self:
+        if self.trace is not None:
+            self.trace.__enter__()
+        if self.plan_out is not None and self.plan_out != STDIO:
+            write_atomic(self.plan_out, "")
+        return self
+
+    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
+                 tb: TracebackType | None) -> None:
+        if self.trace is not None:
+            self.trace.__exit__(kind, error, tb)
+
+    def add(self, record: TickRecord) -> None:
+        if self.trace is not None:
+            self.trace.write_line(record.to_json())
+        executed = list(self.world.executed)
+        if self.plan_out is None or len(executed) == self._done:
+            return
+        if self.plan_out == STDIO:
+            sys.stdout.write("".join(a.ipc() + "\n" for a in executed[self._done:]))
+            sys.stdout.flush()
+        else:
+            write_atomic(self.plan_out, "".join(a.ipc() + "\n" for a in executed))
+        self._done = len(executed)
+
+
 def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Agent], seed: int,
-         max_ticks: int, rate: float | None, quiet: bool) -> acting.RunOutcome:
+         max_ticks: int, rate: float | None, quiet: bool, keep: Callable[[TickRecord], None],
+         stop: Callable[[], bool], world_name: str) -> acting.RunOutcome:
+    """Act, with the live view on a terminal, progress lines in a pipe, or nothing (-q)."""
+
+    def run_with(view: Callable[[Node, Mapping[int, Status], TickRecord], None] | None
+                 ) -> acting.RunOutcome:
+        def each(root: Node, reached: Mapping[int, Status], record: TickRecord) -> None:
+            keep(record)
+            if view is not None:
+                view(root, reached, record)
+
+        return acting.run(task, disturb=specs, agents=scene_agents, world=world, seed=seed,
+                          max_ticks=max_ticks, view=each, rate=rate, stop=stop,
+                          world_name=world_name)
+
     if quiet:
-        view = None
-    elif stderr.is_terminal:
+        return run_with(None)
+    if stderr.is_terminal:
         with LiveView(stderr) as live:
-            return acting.run(task, disturb=specs, agents=scene_agents, world=world, seed=seed,
-                           max_ticks=max_ticks, view=live.show, rate=rate)
-    else:
-        view = progress_line
-    return acting.run(task, disturb=specs, agents=scene_agents, world=world, seed=seed,
-                   max_ticks=max_ticks, view=view, rate=rate)
+            return run_with(live.show)
+    return run_with(progress_line)
 
 
 def progress_line(root: Node, reached: Mapping[int, Status], record: TickRecord) -> None:
@@ -157,19 +248,25 @@ def open_world(task: Task, sim: Sim, scene: str | None, seed: int, gui: bool,
     return world, list(world.scene_agents())
 
 
-def summary_table(reached: bool, reason: str, total: RunSummary) -> Table:
+def summary_table(result: acting.RunOutcome) -> Table:
     """Outcome, ticks, expansions (and when), conflicts, actions, disturbances."""
+    total = result.summary()
     table = Table(title="btplan run", show_header=False, box=None)
     table.add_column(style="bold")
     table.add_column(overflow="fold")
-    outcome = "[green]goal reached[/]" if reached else f"[red]not reached[/]: {escape(reason)}"
+    if result.reached:
+        outcome = "[green]goal reached[/]"
+    elif result.interrupted and result.reason == "interrupted":
+        outcome = "[yellow]interrupted[/] before the goal was reached"
+    else:
+        outcome = f"[red]not reached[/]: {escape(result.reason)}"
     table.add_row("outcome", outcome)
     table.add_row("ticks", str(total.ticks))
     grown = ", ".join(f"{e.condition} @{tick}" for tick, e in total.expansions)
     table.add_row("expansions", f"{len(total.expansions)}" + (f" ({escape(grown)})" if grown else ""))
     table.add_row("conflicts resolved", str(total.conflicts_resolved))
     table.add_row("executed", _listing(total.finished))
-    table.add_row("halted", _listing(total.halted))
+    table.add_row("halted", _listing(total.halted + list(result.halted_on_stop)))
     table.add_row("failed", _listing(total.failed))
     table.add_row("disturbances",
                   _listing([f"@{d.tick} {d.description}" for d in total.disturbances]))

@@ -188,18 +188,29 @@ NEEDS = {
 """What a world must offer for each kind of spec agent."""
 
 
+ABILITY = {
+    "undo": "undo the robot's actions",
+    "help": "do actions for the robot",
+    "set": "set facts",
+    "clear": "clear facts",
+    "fail": "make actions fail",
+}
+"""What each kind of spec asks of the world, in the words of the domain."""
+
+
 def check_world(specs: Sequence[DisturbSpec], world: Any, world_name: str) -> None:
     """Refuse specs the world cannot carry out, before the run rather than in the middle.
 
     A simulator changes its state through its own scene events, not by setting facts,
-    so symbolic specs may not apply there.
+    so symbolic specs may not apply there. The message names the user's spec and fact,
+    not the world's methods.
     """
     for spec in specs:
-        missing = [m for m in NEEDS[spec.kind] if not hasattr(world, m)]
-        if missing:
-            raise InputError(f"the world {world_name} cannot do '{spec.kind}' disturbances "
-                             f"(it has no {missing[0]})", spec.span,
-                             "use its scene's events instead", spec.source_line)
+        if any(not hasattr(world, m) for m in NEEDS[spec.kind]):
+            such = f" such as {str(spec.target).removesuffix('()')}" if spec.target else ""
+            raise InputError(f"{world_name} cannot {ABILITY[spec.kind]}{such} "
+                             f"(in '{spec.text}')", spec.span,
+                             "change it through its scene's events instead", spec.source_line)
 
 
 def agents_from_specs(specs: Sequence[DisturbSpec], seed: int = 0) -> list[Agent]:

@@ -6,12 +6,11 @@ software renderer (works headless); pillow writes the label and the animated GIF
 
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from btplan.errors import WorldError
+from btplan.io import write_bytes_atomic  # a normal file's mode, renamed whole into place
 
 if TYPE_CHECKING:
     from btplan.worlds.pybullet.world import PyBulletWorld
@@ -42,19 +41,6 @@ class Recorder:
         first.save(buffer, format="GIF", save_all=True, append_images=rest,
                    duration=max(20, int(1000 * 0.1 * self.every)), loop=0)
         write_bytes_atomic(self.path, buffer.getvalue())
-
-
-def write_bytes_atomic(path: str, data: bytes) -> None:
-    """Temporary file in the same folder, then rename: never half a GIF on disk."""
-    folder = Path(path).resolve().parent
-    handle, temporary = tempfile.mkstemp(dir=folder, prefix=".btplan-", suffix=".gif")
-    try:
-        with os.fdopen(handle, "wb") as out:
-            out.write(data)
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
 
 
 def frame(world: PyBulletWorld, width: int = 480, height: int = 300) -> Any:

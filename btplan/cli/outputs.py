@@ -1,0 +1,139 @@
+"""Every file a command writes: checked before the work starts, then written whole.
+
+Users run btplan in scripts and on robots. A bad output path found only after minutes
+of planning wastes the work, and a first output written before a second one fails
+leaves a mix of old and new files; so each command lists its outputs up front and
+`check_outputs` refuses the lot (exit 2, one line naming the flag and the path) before
+anything is read or written. Files are then written the way `btplan.io.write_atomic`
+does it: a temporary file renamed over the target, with a normal file's mode.
+
+The files that record a run in progress (`--trace`, `--plan-out` of `run`) are the
+exception: they are written as the run goes, so that an interrupted or killed run
+keeps what it did. `LineStream` writes each line whole, in one system call.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from types import TracebackType
+from typing import Self
+
+from btplan.errors import InputError
+from btplan.io import STDIO, write_atomic
+
+__all__ = ["STDIO", "LineStream", "Output", "check_outputs", "write_atomic"]
+
+
+@dataclass(frozen=True, slots=True)
+class Output:
+    """One output of a command: the flag that names it, the path given (None: not asked for)."""
+
+    flag: str
+    path: str | None
+    folder: bool = False
+
+
+def check_outputs(*outputs: Output) -> None:
+    """Refuse, before any work, outputs that cannot be written as given.
+
+    At most one output may take standard output (two would interleave), no two may
+    name the same file, and each path must be writable: not a folder (or, for a
+    folder output, not a file), in a folder that exists, with permission to write there.
+    """
+    given = [o for o in outputs if o.path is not None]
+    on_stdout = [o.flag for o in given if o.path == STDIO]
+    if len(on_stdout) > 1:
+        raise InputError(f"{on_stdout[0]} and {on_stdout[1]} both write to standard output "
+                         "('-'); send one of them to a file")
+    seen: dict[Path, str] = {}
+    for output in given:
+        assert output.path is not None
+        if output.path == STDIO:
+            if output.folder:
+                raise InputError(f"{output.flag} needs a folder, not '-'")
+            continue
+        problem = folder_problem(output.path) if output.folder else file_problem(output.path)
+        if problem is not None:
+            raise InputError(f"{output.flag} {output.path}: {problem}")
+        key = Path(output.path).resolve()
+        if key in seen:
+            raise InputError(f"{seen[key]} and {output.flag} both write to {output.path}")
+        seen[key] = output.flag
+
+
+def file_problem(path: str) -> str | None:
+    """Why a file cannot be written at `path`, or None if it can.
+
+    A device or a pipe (/dev/null) is written in place, so only its own permission
+    counts; a link is judged by the file it points to.
+    """
+    if path.endswith(os.sep):
+        return "names a folder, not a file"
+    target = Path(os.path.realpath(path))
+    if target.is_dir():
+        return "is a folder, not a file"
+    if target.exists() and not target.is_file():
+        return None if os.access(target, os.W_OK) else "no permission to write here"
+    folder = target.parent
+    if not folder.exists():
+        return f"the folder {folder} does not exist"
+    if not folder.is_dir():
+        return f"{folder} is not a folder"
+    if not os.access(folder, os.W_OK | os.X_OK):
+        return f"no permission to write in the folder {folder}"
+    if target.exists() and not os.access(target, os.W_OK):
+        return "no permission to write this file"
+    return None
+
+
+def folder_problem(path: str) -> str | None:
+    """Why a folder of outputs cannot be made or written at `path`, or None if it can."""
+    target = Path(path)
+    if target.exists() and not target.is_dir():
+        return "is a file, not a folder"
+    existing = target
+    while not existing.exists():
+        existing = existing.parent
+    if not existing.is_dir():
+        return f"{existing} is not a folder"
+    if not os.access(existing, os.W_OK | os.X_OK):
+        return f"no permission to write in the folder {existing}"
+    return None
+
+
+class LineStream:
+    """A file written line by line while a run goes on; `-` is standard output.
+
+    Each line goes to the file in one `write` call with no buffer in between, so a
+    run that is interrupted, or killed outright, leaves every line it finished and
+    never half of one. The file is created like any file (0666 less the umask), and
+    an existing file keeps its mode.
+    """
+
+    def __init__(self, path: str) -> None:
+        self.path = path
+        self._fd: int | None = None
+
+    def __enter__(self) -> Self:
+        if self.path != STDIO:
+            self._fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666)
+        return self
+
+    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
+                 tb: TracebackType | None) -> None:
+        if self._fd is not None:
+            os.close(self._fd)
+            self._fd = None
+
+    def write_line(self, line: str) -> None:
+        data = (line if line.endswith("\n") else line + "\n")
+        if self._fd is None:
+            sys.stdout.write(data)
+            sys.stdout.flush()
+            return
+        view = memoryview(data.encode("utf-8"))
+        while view:
+            view = view[os.write(self._fd, view):]

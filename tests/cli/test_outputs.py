@@ -1,0 +1,181 @@
+"""Output files: a normal file's mode, checked before any work, at most one on stdout."""
+
+from __future__ import annotations
+
+import os
+import stat
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from btplan.cli import app
+
+DOMAINS = Path(__file__).resolve().parents[2] / "domains"
+PICK = str(DOMAINS / "pick_place.bt")
+runner = CliRunner()
+
+
+@pytest.fixture
+def umask_022() -> Iterator[None]:
+    previous = os.umask(0o022)
+    yield
+    os.umask(previous)
+
+
+def mode(path: Path) -> int:
+    return stat.S_IMODE(path.stat().st_mode)
+
+
+def test_every_command_writes_files_0644_under_umask_022(tmp_path: Path, umask_022: None) -> None:
+    tree, plan, xml = tmp_path / "t.json", tmp_path / "p.plan", tmp_path / "t.xml"
+    trace, run_plan, pddl = tmp_path / "tr.jsonl", tmp_path / "run.plan", tmp_path / "bw.pddl"
+    steps = tmp_path / "steps"
+    commands = [
+        ["plan", PICK, "-o", str(tree), "--plan-out", str(plan), "--trace-expansions", str(steps)],
+        ["export", "xml", str(tree), "-o", str(xml)],
+        ["run", PICK, "-q", "--trace", str(trace), "--plan-out", str(run_plan)],
+        ["generate", "blocksworld", "-o", str(pddl)],
+    ]
+    for args in commands:
+        result = runner.invoke(app, args)
+        assert result.exit_code == 0, result.output
+    written = [tree, plan, xml, trace, run_plan, pddl, *sorted(steps.iterdir())]
+    assert len(written) == 14
+    assert {p.name: oct(mode(p)) for p in written} == {p.name: "0o644" for p in written}
+
+
+def test_an_existing_file_keeps_its_mode(tmp_path: Path, umask_022: None) -> None:
+    tree = tmp_path / "t.json"
+    tree.write_text("old")
+    tree.chmod(0o640)
+    result = runner.invoke(app, ["plan", PICK, "-o", str(tree)])
+    assert result.exit_code == 0, result.output
+    assert tree.read_text() != "old" and mode(tree) == 0o640
+
+
+def test_the_umask_is_honoured(tmp_path: Path) -> None:
+    previous = os.umask(0o077)
+    try:
+        result = runner.invoke(app, ["generate", "gripper", "-o", str(tmp_path / "g.pddl")])
+    finally:
+        os.umask(previous)
+    assert result.exit_code == 0 and mode(tmp_path / "g.pddl") == 0o600
+
+
+def read_only_folder(tmp_path: Path) -> Path:
+    """A folder this process cannot write in (root ignores modes: use /proc/self then)."""
+    folder = tmp_path / "locked"
+    folder.mkdir()
+    folder.chmod(0o500)
+    if os.access(folder, os.W_OK):
+        if os.path.isdir("/proc/self") and not os.access("/proc/self", os.W_OK):
+            return Path("/proc/self")
+        pytest.skip("no folder here is read-only for this user")
+    return folder
+
+
+BAD = {
+    "a folder": (lambda tmp: str(tmp / "existing"), "is a folder, not a file"),
+    "a missing parent": (lambda tmp: str(tmp / "nowhere" / "x"), "does not exist"),
+    "a file as parent": (lambda tmp: str(tmp / "good.json" / "x"), "is not a folder"),
+    "no permission": (lambda tmp: str(read_only_folder(tmp) / "x"), "no permission to write"),
+}
+
+COMMANDS = {
+    "plan -o": lambda bad, good: ["plan", PICK, "-o", bad, "--plan-out", good],
+    "plan --plan-out": lambda bad, good: ["plan", PICK, "-o", good, "--plan-out", bad],
+    "run --trace": lambda bad, good: ["run", PICK, "--plan-out", good, "--trace", bad],
+    "run --plan-out": lambda bad, good: ["run", PICK, "--trace", good, "--plan-out", bad],
+    "export -o": lambda bad, good: ["export", "xml", "TREE", "-o", bad],
+    "generate -o": lambda bad, good: ["generate", "logistics", "-o", bad],
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+@pytest.mark.parametrize("command", sorted(COMMANDS))
+def test_a_bad_output_path_exits_2_before_any_file_is_touched(
+        tmp_path: Path, case: str, command: str) -> None:
+    (tmp_path / "existing").mkdir()
+    (tmp_path / "good.json").write_text("keep")
+    tree = tmp_path / "tree.json"
+    tree.write_text(runner.invoke(app, ["plan", PICK, "-f", "json"]).stdout)
+    make, message = BAD[case]
+    bad = make(tmp_path)
+    before = {p: p.stat().st_mtime_ns for p in tmp_path.rglob("*")}
+    good = str(tmp_path / "good.json")
+    args = [str(tree) if a == "TREE" else a for a in COMMANDS[command](bad, good)]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 2, result.output
+    flag = command.split()[1]
+    (line,) = result.stderr.strip().splitlines()
+    assert flag in line and bad in line and message in line
+    assert (tmp_path / "good.json").read_text() == "keep"
+    assert {p: p.stat().st_mtime_ns for p in tmp_path.rglob("*")} == before
+
+
+def test_two_outputs_on_stdout_are_refused_naming_both_flags() -> None:
+    result = runner.invoke(app, ["plan", PICK, "--plan-out", "-"])
+    assert result.exit_code == 2
+    assert "-o/--output and --plan-out both write to standard output" in result.stderr
+    result = runner.invoke(app, ["run", PICK, "--trace", "-", "--plan-out", "-"])
+    assert result.exit_code == 2
+    assert "--trace and --plan-out both write to standard output" in result.stderr
+
+
+def test_two_outputs_to_one_file_are_refused(tmp_path: Path) -> None:
+    same = str(tmp_path / "same")
+    result = runner.invoke(app, ["plan", PICK, "-o", same, "--plan-out", same])
+    assert result.exit_code == 2 and "both write to" in result.stderr
+    assert not Path(same).exists()
+
+
+def test_a_file_where_the_expansion_folder_goes_is_refused(tmp_path: Path) -> None:
+    (tmp_path / "steps").write_text("")
+    result = runner.invoke(app, ["plan", PICK, "--trace-expansions", str(tmp_path / "steps")])
+    assert result.exit_code == 2 and "--trace-expansions" in result.stderr
+    assert "is a file, not a folder" in result.stderr
+
+
+def test_a_failed_plan_writes_nothing(tmp_path: Path) -> None:
+    out, plan, steps = tmp_path / "t.json", tmp_path / "p.plan", tmp_path / "steps"
+    result = runner.invoke(app, ["plan", PICK, "--max-expansions", "1", "-o", str(out),
+                                 "--plan-out", str(plan), "--trace-expansions", str(steps)])
+    assert result.exit_code == 1
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_the_plan_alone_can_go_to_stdout(tmp_path: Path) -> None:
+    result = runner.invoke(app, ["plan", PICK, "-o", str(tmp_path / "t.json"), "--plan-out", "-"])
+    assert result.exit_code == 0
+    assert result.stdout.splitlines()[0] == "(moveto cube tau_cube)"
+
+
+def test_the_old_spelling_of_output_still_works(tmp_path: Path) -> None:
+    out = tmp_path / "t.json"
+    result = runner.invoke(app, ["plan", PICK, "--out", str(out)])
+    assert result.exit_code == 0 and out.exists()
+    assert "--out " not in runner.invoke(app, ["plan", "--help"]).stdout
+
+
+def test_a_link_is_written_through_and_a_pipe_is_not_replaced(tmp_path: Path) -> None:
+    import threading
+
+    real = tmp_path / "real.pddl"
+    real.write_text("old")
+    link = tmp_path / "link.pddl"
+    link.symlink_to(real)
+    result = runner.invoke(app, ["generate", "gripper", "-o", str(link)])
+    assert result.exit_code == 0 and link.is_symlink()
+    assert real.read_text().startswith("(define")
+
+    pipe = tmp_path / "pipe"
+    os.mkfifo(pipe)
+    received: list[bytes] = []
+    reader = threading.Thread(target=lambda: received.append(pipe.read_bytes()))
+    reader.start()
+    result = runner.invoke(app, ["generate", "gripper", "-o", str(pipe)])
+    reader.join()
+    assert result.exit_code == 0 and stat.S_ISFIFO(pipe.stat().st_mode)
+    assert received[0].startswith(b"(define")
