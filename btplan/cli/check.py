@@ -17,16 +17,24 @@ from btplan.model import ROOT_TYPE
 stdout = Console(highlight=False, soft_wrap=True)
 
 
-@app.command()
+EXAMPLES = """Examples:
+
+  btplan check domains/pick_place.bt
+  btplan check domain.pddl problem.pddl
+  btplan check --json domains/blocksworld.bt | jq '.problems[].name'
+"""
+
+
+@app.command(epilog=EXAMPLES)
 @guarded
 def check(
-    files: Annotated[
-        list[str],
-        typer.Argument(help="Domain and problem files (.bt or .pddl); '-' reads standard input."),
-    ],
+    files: Annotated[list[str], typer.Argument(
+        metavar="FILE", help="Domain and problem files (.bt or .pddl); '-' reads standard input.")],
     as_json: Annotated[
         bool, typer.Option("--json", help="Print the parsed models as JSON instead.")
     ] = False,
+    quiet: Annotated[bool, typer.Option(
+        "-q", "--quiet", help="Print nothing when all is well; errors only.")] = False,
 ) -> None:
     """Check domains and problems; print a summary, or every error with its place."""
     try:
@@ -36,6 +44,8 @@ def check(
             stderr.print(f"[bold red]error:[/] {escape(format_input_error(error))}")
         stderr.print(f"{len(errors.errors)} errors")
         raise typer.Exit(EXIT_BAD_INPUT) from None
+    if quiet:
+        return
     for remark in collection.warnings:
         stderr.print(f"[bold yellow]warning:[/] {escape(format_input_error(remark))}")
     if as_json:

@@ -65,7 +65,7 @@ def _size(value: int, flag: str, least: int = 1) -> int:
     return value
 
 
-@generate_app.command("blocksworld")
+@generate_app.command("blocksworld", epilog="Example:\n\n  btplan generate blocksworld --blocks 8 --seed 3 -o bw.pddl\n")
 @guarded
 def generate_blocksworld(
     blocks: Annotated[int, typer.Option("--blocks", metavar="N", help="Number of blocks.")] = 5,
@@ -80,7 +80,7 @@ def generate_blocksworld(
     emit(lambda: blocksworld(n, seed), fmt, domain_only, problem_only, out)
 
 
-@generate_app.command("gripper")
+@generate_app.command("gripper", epilog="Example:\n\n  btplan generate gripper --balls 6 --format bt | btplan plan -\n")
 @guarded
 def generate_gripper(
     balls: Annotated[int, typer.Option("--balls", metavar="N", help="Number of balls.")] = 4,
@@ -96,7 +96,7 @@ def generate_gripper(
     emit(lambda: gripper(n, seed, rooms=r), fmt, domain_only, problem_only, out)
 
 
-@generate_app.command("logistics")
+@generate_app.command("logistics", epilog="Example:\n\n  btplan generate logistics --packages 5 --domain-only -o log.pddl\n")
 @guarded
 def generate_logistics(
     packages: Annotated[int, typer.Option(

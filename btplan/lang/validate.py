@@ -21,7 +21,7 @@ from btplan.lang.syntax import (
     TypedSyntax,
 )
 from btplan.lang.types import TypeTable
-from btplan.lang.writers import bt_literal
+from btplan.lang.writers import bt_literal, pddl_literal
 from btplan.model import (
     EQUALITY,
     ROOT_TYPE,
@@ -203,20 +203,33 @@ class _LiteralChecker:
         self.scope = scope
         self.action = action
         self.constants = constants
+        self.pddl = False  # set from the first literal: messages quote the file's own syntax
+
+    def _shown(self, literal: Literal) -> str:
+        if self.pddl:
+            return pddl_literal(literal, frozenset(set(self.scope) - self.constants))
+        return bt_literal(literal)
+
+    def _variable(self, name: str) -> str:
+        return f"?{name}" if self.pddl and name in self.scope and name not in self.constants \
+            else name
 
     def check(self, lit: LiteralSyntax, part: str) -> Literal:
+        self.pddl = written_in_pddl(lit.at.span.path, lit.at.line_text)
         if lit.is_equality:
             if part == "post":
                 raise lit.at.error(
                     "an equality cannot be a postcondition",
-                    "equalities belong under 'where:' or 'pre:'",
+                    "equalities belong in :precondition" if self.pddl
+                    else "equalities belong under 'where:' or 'pre:'",
                 )
             left, right = (self._arg_type(arg, lit, part) for arg in lit.args)
             if not self.types.related(left, right):
                 verdict = "always true" if not lit.positive else "never true"
+                first, second = (self._variable(a.text) for a in lit.args)
                 raise lit.at.error(
-                    f"'{bt_literal(lit.literal())}' is {verdict}: {lit.args[0].text} is {article(left)} "
-                    f"and {lit.args[1].text} is {article(right)}"
+                    f"'{self._shown(lit.literal())}' is {verdict}: {first} is {article(left)} "
+                    f"and {second} is {article(right)}"
                 )
             return lit.literal()
         predicate = check_predicate(lit, self.predicates)
@@ -239,7 +252,7 @@ class _LiteralChecker:
     def _arg_type(self, arg: Name, lit: LiteralSyntax, part: str) -> str:
         if arg.text in self.scope:
             return self.scope[arg.text]
-        params = sorted(set(self.scope) - self.constants)
+        params = [self._variable(p) for p in sorted(set(self.scope) - self.constants)]
         hint = suggest(arg.text, self.scope) or (
             f"the parameters of {self.action} are {', '.join(params)}"
             if params
@@ -252,6 +265,13 @@ class _LiteralChecker:
         raise arg.at.error(
             f"'{arg.text}' is neither a parameter of {self.action} nor a constant", hint
         )
+
+
+def written_in_pddl(path: str, line_text: str | None) -> bool:
+    """Whether a place is in a PDDL text: by suffix, else (standard input) by its look."""
+    if path.lower().endswith(".pddl"):
+        return True
+    return not path.lower().endswith(".bt") and (line_text or "").lstrip().startswith("(")
 
 
 def check_predicate(lit: LiteralSyntax, predicates: Mapping[str, Predicate]) -> Predicate:
