@@ -13,6 +13,7 @@ from btplan.cli.app import EXIT_BAD_INPUT, app, format_input_error, guarded, std
 from btplan.lang import Collection, InputErrors, collect
 from btplan.lang.writers import bt_literal
 from btplan.model import ROOT_TYPE
+from btplan.shipped import resolve
 
 stdout = Console(highlight=False, soft_wrap=True)
 
@@ -38,7 +39,7 @@ def check(
 ) -> None:
     """Check domains and problems; print a summary, or every error with its place."""
     try:
-        collection = collect(files)
+        collection = collect([resolve(f) for f in files])
     except InputErrors as errors:
         for error in errors.errors:
             stderr.print(f"[bold red]error:[/] {escape(format_input_error(error))}")

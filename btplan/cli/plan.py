@@ -20,6 +20,7 @@ from btplan.cli.interrupts import Interrupts
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Interrupted
 from btplan.planner import PlannerOptions
+from btplan.shipped import resolve
 
 
 class Format(str, Enum):
@@ -110,7 +111,7 @@ def plan_command(
         options = replace(options or PlannerOptions(), max_alternatives=max_alternatives)
     with Interrupts() as interrupted:
         try:
-            task = load(*([domain] if problem is None else [domain, problem]))
+            task = load(resolve(domain), *([problem] if problem is not None else []))
             result = plan(task, seed=seed, max_expansions=max_expansions, max_ticks=max_ticks,
                           timeout=timeout, options=options, on_expansion=trace,
                           stop=interrupted)

@@ -27,6 +27,7 @@ from btplan.model import Task
 from btplan.acting.records import TickRecord
 from btplan.worlds.agents import Agent
 from btplan.worlds.disturb import DisturbSpec, parse_scenario, parse_spec
+from btplan.shipped import resolve
 
 
 class Sim(str, Enum):
@@ -98,7 +99,7 @@ def run(
         raise InputError(f"--timeout must be positive, got {timeout:g}")
     check_outputs(Output("--trace", trace), Output("--plan-out", plan_out),
                   Output("--record", record))
-    task = acting.load(*([domain] if problem is None else [domain, problem]))
+    task = acting.load(resolve(domain), *([problem] if problem is not None else []))
     specs = [parse_spec(text, Span("--disturb", 1, 1)) for text in disturb or []]
     scene: str | None = None
     if scenario is not None:

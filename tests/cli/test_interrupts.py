@@ -149,3 +149,34 @@ def test_a_second_signal_exits_at_once(tmp_path: Path) -> None:
                           timeout=WAIT)
     assert done.returncode == 130
     assert done.stdout == "asked to stop\n"
+
+
+def test_kill_9_keeps_every_finished_tick_and_the_plan_so_far(tmp_path: Path) -> None:
+    child = start(["run", str(DOMAINS / "pick_place.bt"), "--rate", "10", "-q",
+                   "--trace", "tr.jsonl", "--plan-out", "p.plan"], tmp_path)
+    wait_for(tmp_path / "tr.jsonl", lambda r: bool(r["finished"]), child)
+    child.kill()
+    child.communicate(timeout=WAIT)
+    records = parse_trace(tmp_path / "tr.jsonl")  # no torn line, ticks 1..n
+    finished = [a for r in records for a in r["finished"]]
+    assert len((tmp_path / "p.plan").read_text().splitlines()) == len(finished) >= 1
+
+
+def test_a_signal_during_generate_writes_nothing(tmp_path: Path,
+                                                monkeypatch: pytest.MonkeyPatch) -> None:
+    from typer.testing import CliRunner
+
+    import btplan.cli.generate as generate
+    from btplan.cli import app
+
+    real = generate.gripper
+
+    def interrupted(*args: Any, **kwargs: Any) -> Any:
+        os.kill(os.getpid(), signal.SIGTERM)  # a real signal, while the problem is made
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(generate, "gripper", interrupted)
+    out = tmp_path / "g.pddl"
+    result = CliRunner().invoke(app, ["generate", "gripper", "-o", str(out)])
+    assert result.exit_code == 143 and "interrupted" in result.stderr
+    assert not out.exists()

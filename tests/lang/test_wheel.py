@@ -1,4 +1,4 @@
-"""A non-editable install finds the grammars: they ship inside the wheel as package data.
+"""A non-editable install works from any folder: grammars, domains and scenes are package data.
 
 Builds the wheel from a copy of the sources (so the working tree stays clean), installs
 it with --no-deps into a fresh, isolated venv, and runs a check from an unrelated folder.
@@ -11,6 +11,7 @@ installed globally.
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import subprocess
@@ -52,7 +53,7 @@ def test_installed_wheel_reads_both_grammars(tmp_path: Path) -> None:
     source.mkdir()
     for name in ("pyproject.toml", "README.md"):
         shutil.copy(ROOT / name, source / name)
-    for folder in ("btplan", "grammar"):
+    for folder in ("btplan", "grammar", "domains"):
         shutil.copytree(
             ROOT / folder, source / folder, ignore=shutil.ignore_patterns("__pycache__")
         )
@@ -71,9 +72,13 @@ def test_installed_wheel_reads_both_grammars(tmp_path: Path) -> None:
         cwd=tmp_path,
     )
     assert built.returncode == 0, built.stderr
+    assert "warning" not in (built.stdout + built.stderr).lower(), built.stderr
     (wheel,) = wheels.glob("btplan-*.whl")
     names = zipfile.ZipFile(wheel).namelist()
     assert "btplan/grammar/btplan.lark" in names and "btplan/grammar/pddl.lark" in names
+    assert "btplan/domains/pick_place.bt" in names and "btplan/domains/scenes/youbot.toml" in names
+    metadata = zipfile.ZipFile(wheel).read("btplan-0.1.0.dist-info/METADATA").decode()
+    assert "License-Expression: MIT" in metadata
 
     venv = tmp_path / "venv"
     made = run(sys.executable, "-m", "venv", venv, cwd=tmp_path)
@@ -82,6 +87,7 @@ def test_installed_wheel_reads_both_grammars(tmp_path: Path) -> None:
     borrow_dependencies(python)
     installed = run(python, "-m", "pip", "install", "-q", "--no-deps", wheel, cwd=tmp_path)
     assert installed.returncode == 0, installed.stderr
+    assert "warning" not in installed.stderr.lower(), installed.stderr
 
     work = tmp_path / "elsewhere"
     work.mkdir()
@@ -104,3 +110,18 @@ def test_installed_wheel_reads_both_grammars(tmp_path: Path) -> None:
     command = run(venv / "bin" / "btplan", "check", "pick_place.bt", "d.pddl", "p.pddl", cwd=work)
     assert command.returncode == 0, command.stderr
     assert "problem cube_on_goal for pick_place" in command.stdout
+
+    version = run(venv / "bin" / "btplan", "--version", cwd=work)
+    assert version.returncode == 0 and version.stdout == "btplan 0.1.0\n", version.stderr
+    module = run(python, "-m", "btplan", "--version", cwd=work)
+    assert module.stdout == version.stdout, module.stderr
+
+    # a shipped domain by name, from a folder without it: read from the installed package
+    planned = run(venv / "bin" / "btplan", "plan", "pick_place_obstacle", "-f", "json",
+                  "-o", "tree.json", "--plan-out", "sas_plan", cwd=work)
+    assert planned.returncode == 0, planned.stderr
+    assert not (work / "pick_place_obstacle.bt").exists()
+    assert json.loads((work / "tree.json").read_text())["root"]["type"] == "Fallback"
+    assert (work / "sas_plan").read_text().splitlines()[-1] == "(place cube goal)"
+    where = run(python, "-c", "from btplan import shipped; print(shipped.folder())", cwd=work)
+    assert Path(where.stdout.strip()).is_relative_to(venv)

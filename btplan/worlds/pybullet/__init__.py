@@ -9,12 +9,13 @@ from __future__ import annotations
 import importlib
 from pathlib import Path
 
+from btplan import shipped
 from btplan.errors import WorldError
 from btplan.model import Task
 from btplan.worlds.pybullet.world import PyBulletWorld
 
-SCENES = Path(__file__).resolve().parents[3] / "domains" / "scenes"
-"""Where the scenes of the shipped domains live, next to the domains."""
+SCENES = shipped.scenes()
+"""Where the scenes of the shipped domains live: package data, next to the domains."""
 
 
 def default_scene(task: Task) -> Path:

@@ -1,0 +1,1 @@
+"""The example domains, shipped as package data (btplan.domains)."""

@@ -1,0 +1,1 @@
+"""The PyBullet scenes of the example domains, shipped as package data."""
