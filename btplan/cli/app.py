@@ -12,6 +12,7 @@ import functools
 import os
 import traceback
 from collections.abc import Callable
+from contextvars import ContextVar
 from importlib import metadata
 from typing import Annotated, ParamSpec, TypeVar
 
@@ -41,6 +42,8 @@ EXIT_CODES = {
 
 ISSUES = "https://github.com/btplan/btplan/issues"
 DEBUG_ENV = "BTPLAN_DEBUG"
+_debug_flag: ContextVar[bool] = ContextVar("btplan_debug", default=False)
+"""Set by `--debug` for the command being run (the group callback sets it every time)."""
 
 app = typer.Typer(
     name="btplan",
@@ -83,8 +86,7 @@ def main_options(
     ] = False,
 ) -> None:
     """Turn planning domains into reactive Behavior Trees, export them, and run them."""
-    if debug:
-        os.environ[DEBUG_ENV] = "1"
+    _debug_flag.set(debug)
 
 
 def format_input_error(error: InputError) -> str:
@@ -98,7 +100,7 @@ def format_input_error(error: InputError) -> str:
 
 
 def debugging() -> bool:
-    return os.environ.get(DEBUG_ENV, "") not in ("", "0")
+    return _debug_flag.get() or os.environ.get(DEBUG_ENV, "") not in ("", "0")
 
 
 def report_bug(error: BaseException) -> None:
