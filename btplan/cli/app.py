@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import functools
 import os
+import sys
 import traceback
 from collections.abc import Callable
 from contextvars import ContextVar
@@ -113,6 +114,15 @@ def report_bug(error: BaseException) -> None:
                  f"it with the command you ran at {ISSUES}{where}")
 
 
+def _silence_stdout() -> None:
+    try:
+        sink = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(sink, sys.stdout.fileno())
+        os.close(sink)
+    except (OSError, ValueError):  # stdout is no real file (a test runner's buffer)
+        pass
+
+
 def guarded(command: Callable[P, R]) -> Callable[P, R]:
     """Turn exceptions into a message on stderr and an exit code (see EXIT_CODES)."""
 
@@ -135,6 +145,11 @@ def guarded(command: Callable[P, R]) -> Callable[P, R]:
         except KeyboardInterrupt:
             stderr.print("[bold yellow]interrupted[/]")
             raise typer.Exit(EXIT_INTERRUPTED) from None
+        except BrokenPipeError:
+            # The reader of standard output stopped early (`| head`): not an error, as
+            # for ripgrep; later writes (at exit) go nowhere instead of failing again.
+            _silence_stdout()
+            raise typer.Exit(EXIT_OK) from None
         except (typer.Exit, typer.Abort, TyperException):
             raise
         except Exception as error:

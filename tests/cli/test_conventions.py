@@ -104,3 +104,14 @@ def test_a_pddl_error_is_explained_in_pddl(tmp_path: Path) -> None:
     domain.write_text(domain.read_text().replace("(= ?x ?y)", "(p ?z)"))
     result = runner.invoke(app, ["check", str(domain)])
     assert "the parameters of act are ?x, ?y" in result.stderr
+
+
+def test_a_reader_that_stops_early_is_not_an_error() -> None:
+    """`btplan generate ... | head -1`: the pipe closes, btplan exits quietly."""
+    child = subprocess.Popen(
+        [sys.executable, "-m", "btplan", "generate", "blocksworld", "--blocks", "3000"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert child.stdout is not None and child.stdout.readline().startswith(b"(define")
+    child.stdout.close()
+    _, err = child.communicate(timeout=300)
+    assert child.returncode == 0 and err == b""
