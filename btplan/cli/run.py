@@ -107,16 +107,18 @@ def run(
             scene = scenario
         else:
             specs.extend(parse_scenario(read_text(scenario), scenario))
-    world, scene_agents = open_world(task, sim, scene, seed, gui, record, probabilities(fail_prob))
-    deadline = None if timeout is None else time.monotonic() + timeout
-    with Interrupts() as interrupted, RunFiles(trace, plan_out, world) as files:
+    with Interrupts() as interrupted:  # a signal while the world opens stops before tick 1
+        world, scene_agents = open_world(task, sim, scene, seed, gui, record,
+                                         probabilities(fail_prob))
+        deadline = None if timeout is None else time.monotonic() + timeout
 
         def stop() -> bool:
             return interrupted() or (deadline is not None and time.monotonic() > deadline)
 
         try:
-            result = _act(task, world, specs, scene_agents, seed, max_ticks, rate, quiet,
-                          files.add, stop, WORLD_NAMES[sim])
+            with RunFiles(trace, plan_out, world) as files:
+                result = _act(task, world, specs, scene_agents, seed, max_ticks, rate, quiet,
+                              files.add, stop, WORLD_NAMES[sim])
         finally:
             if hasattr(world, "close"):
                 world.close()  # closes a recording into a playable file, interrupted or not
