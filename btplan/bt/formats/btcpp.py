@@ -13,13 +13,13 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field
-from xml.parsers import expat
 from xml.sax.saxutils import quoteattr
 
 from btplan.bt.composites import Fallback, Sequence
 from btplan.bt.decorators import ForceFailure, ForceSuccess, Inverter, Retry, Timeout
 from btplan.bt.formats.locate import line_at
+from btplan.bt.formats.xmlparse import Element as _Element
+from btplan.bt.formats.xmlparse import parse_xml
 from btplan.bt.leaves import Action, Condition, Leaf, leaf_label
 from btplan.bt.node import Node
 from btplan.bt.parallel import Parallel
@@ -124,40 +124,6 @@ def dump_xml(tree: BehaviorTree) -> str:
 
 
 # --- import -------------------------------------------------------------------------------
-
-
-@dataclass
-class _Element:
-    tag: str
-    attrs: dict[str, str]
-    line: int
-    column: int
-    children: list[_Element] = field(default_factory=list)
-
-
-def _parse(text: str, path: str) -> _Element:
-    """A minimal element tree with line and column, via expat (ElementTree keeps none)."""
-    parser = expat.ParserCreate()
-    stack: list[_Element] = [_Element("#document", {}, 1, 1)]
-
-    def start(tag: str, attrs: dict[str, str]) -> None:
-        element = _Element(tag, attrs, parser.CurrentLineNumber, parser.CurrentColumnNumber + 1)
-        stack[-1].children.append(element)
-        stack.append(element)
-
-    def end(tag: str) -> None:
-        stack.pop()
-
-    parser.StartElementHandler = start
-    parser.EndElementHandler = end
-    try:
-        parser.Parse(text, True)
-    except expat.ExpatError as error:
-        line = error.lineno
-        raise InputError(f"not well-formed XML: {expat.ErrorString(error.code)}",
-                         Span(path, line, error.offset + 1), source_line=line_at(text, line)
-                         ) from None
-    return stack[0].children[0]
 
 
 class _Reader:
@@ -273,7 +239,7 @@ class _Reader:
 
 def load_xml(text: str, path: str = "<tree>") -> BehaviorTree:
     """Read a BT.CPP v4 document written by btplan or by hand in the same subset."""
-    return _Reader(text, path).tree(_parse(text, path))
+    return _Reader(text, path).tree(parse_xml(text, path))
 
 
 __all__ = ["TICK_MS", "ExportError", "dump_xml", "load_xml"]
