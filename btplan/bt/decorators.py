@@ -81,6 +81,7 @@ class Retry(Decorator):
     """Gives a failing child up to `attempts` tries (BT.CPP RetryUntilSuccessful).
 
     Child SUCCESS: SUCCESS, and the count starts again. Child RUNNING: RUNNING.
+    `attempts=-1` retries for ever, as BT.CPP's `num_attempts="-1"`.
     Child FAILURE uses up one attempt; after the last one the decorator returns FAILURE.
     While attempts remain, what happens next follows BT.CPP 4: a child that failed at
     once (it was not RUNNING before this tick) is tried again on the next tick, and the
@@ -92,8 +93,8 @@ class Retry(Decorator):
     kind = "Retry"
 
     def __init__(self, child: Node | None = None, attempts: int = 1, name: str = "") -> None:
-        if attempts < 1:
-            raise ValueError(f"Retry needs at least one attempt, got {attempts}")
+        if attempts < 1 and attempts != -1:
+            raise ValueError(f"Retry needs at least one attempt (or -1), got {attempts}")
         super().__init__(child, name)
         self.attempts = attempts
         self._failures = 0
@@ -108,7 +109,7 @@ class Retry(Decorator):
                     self._failures = 0
                 break
             self._failures += 1
-            if self._failures >= self.attempts:
+            if 0 < self.attempts <= self._failures:
                 self._failures = 0
                 break
             if fresh:

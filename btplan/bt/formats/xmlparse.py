@@ -32,7 +32,9 @@ class Element:
     attrs: dict[str, str]
     line: int
     column: int
+    path: str = ""
     children: list[Element] = field(default_factory=list)
+    text: str = ""
 
 
 class _Refused(Exception):
@@ -60,12 +62,16 @@ def parse_xml(text: str, path: str) -> Element:
             raise _Refused(f"elements are nested more than {MAX_DEPTH} deep")
         if count > MAX_ELEMENTS:
             raise _Refused(f"more than {MAX_ELEMENTS:,} elements")
-        element = Element(tag, attrs, parser.CurrentLineNumber, parser.CurrentColumnNumber + 1)
+        element = Element(tag, attrs, parser.CurrentLineNumber, parser.CurrentColumnNumber + 1,
+                          path)
         stack[-1].children.append(element)
         stack.append(element)
 
     def end(tag: str) -> None:
         stack.pop()
+
+    def data(chunk: str) -> None:
+        stack[-1].text += chunk
 
     def doctype(*_: object) -> None:
         raise _Refused("a DOCTYPE is not allowed in a tree file",
@@ -76,6 +82,7 @@ def parse_xml(text: str, path: str) -> Element:
 
     parser.StartElementHandler = start
     parser.EndElementHandler = end
+    parser.CharacterDataHandler = data
     parser.StartDoctypeDeclHandler = doctype
     parser.EntityDeclHandler = doctype
     parser.ExternalEntityRefHandler = external
