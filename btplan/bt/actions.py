@@ -8,7 +8,7 @@ btplan's Timeout.
 
 from __future__ import annotations
 
-from btplan.bt.blackboard import NodeError, Ports, pointer
+from btplan.bt.blackboard import NodeError, Ports, as_text, pointer
 from btplan.bt.node import Node
 from btplan.bt.script import Script
 from btplan.bt.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
@@ -81,9 +81,24 @@ class SetBlackboard(Node):
             value = board.get(source)
         else:
             value = raw
-        board.set(self.ports.key("output_key"), value)
+        board.set(self._output_key(), value)
         self.status = SUCCESS
         return SUCCESS
+
+
+    def _output_key(self) -> str:
+        """BT.CPP reads `output_key` as an input: a bare name is the key, and `{x}` means
+        the key is the text stored in entry x (an error when x is not set)."""
+        raw = self.ports.values.get("output_key")
+        if raw is None:
+            raise NodeError(f"{self.ports.owner}: missing port 'output_key'")
+        source = pointer(raw, "output_key")
+        if source is None:
+            return raw
+        if not self.ports.board.has(source):
+            raise NodeError(f"{self.ports.owner}: missing port 'output_key' ({{{source}}} "
+                            "is not set)")
+        return as_text(self.ports.board.get(source))
 
 
 class UnsetBlackboard(Node):

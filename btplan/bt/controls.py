@@ -25,8 +25,9 @@ def _reset(node: Composite, world: World) -> None:
 class SequenceWithMemory(Sequence):
     """BT.CPP SequenceWithMemory: like a memory Sequence, but a FAILURE does not rewind.
 
-    Child SUCCESS or SKIPPED: next child. RUNNING: return it; the next tick resumes
-    this child. FAILURE: return it, halting the children from it on, and keep the
+    Child SUCCESS or SKIPPED: next child, except that after a fresh child's SUCCESS
+    it yields (RUNNING) until the next tick, as BT.CPP 4.8 does. RUNNING: return it;
+    the next tick resumes this child. FAILURE: return it, halting the children from it on, and keep the
     index, so the next tick starts again at the child that failed.
     """
 
@@ -40,6 +41,7 @@ class SequenceWithMemory(Sequence):
         children = self._children
         skipped = True
         while self._current < len(children):
+            fresh = children[self._current].status is not RUNNING
             status = children[self._current].tick(world)
             if status is RUNNING:
                 self.status = RUNNING
@@ -50,6 +52,9 @@ class SequenceWithMemory(Sequence):
                 return FAILURE
             skipped = skipped and status is SKIPPED
             self._current += 1
+            if status is SUCCESS and fresh and self._current < len(children):
+                self.status = RUNNING  # BT.CPP yields after a synchronous child
+                return RUNNING
         self._current = 0
         _reset(self, world)
         self.status = IDLE if skipped else SUCCESS

@@ -6,8 +6,8 @@ comparisons (`== != < > <= >=`); `+ - * /`; the bit operators `& | ^ ~`; unary `
 `!`; `..` to join strings; numbers (decimal, real, hex), strings in single or double
 quotes, `true`/`false`, blackboard names (`@name` is the root blackboard) and enum names
 given by the caller. As in BT.CPP, every arithmetic result is a real number, a
-comparison or logic result is 1 or 0, numbers and strings do not mix, and equality of
-numbers allows a float epsilon. A syntax error is a ScriptSyntaxError with the offset of
+comparison or logic result is 1 or 0, a string compared with a number is read as a
+number (an error if it is not one), and equality of numbers allows a float epsilon. A syntax error is a ScriptSyntaxError with the offset of
 the offending character, so the reader can point at it in the file.
 """
 
@@ -18,7 +18,7 @@ import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
-from btplan.bt.blackboard import Blackboard, NodeError, Value, as_text
+from btplan.bt.blackboard import Blackboard, NodeError, Value, as_text, to_number
 
 EPSILON = 1.1920929e-07
 """Numbers closer than a float epsilon compare equal, as in BT.CPP."""
@@ -94,9 +94,10 @@ def _compare(op: str, left: Value, right: Value) -> bool:
         a_s, b_s = left, right
         return {"==": a_s == b_s, "!=": a_s != b_s, "<": a_s < b_s, ">": a_s > b_s,
                 "<=": a_s <= b_s, ">=": a_s >= b_s}[op]
-    else:
-        raise NodeError(f"cannot compare {as_text(left)!r} and {as_text(right)!r}: "
-                        "a number and a string do not mix")
+    else:  # BT.CPP 4.8 reads the string as a number, and fails if it is not one
+        a, b = (to_number(left, "script comparison"), to_number(right, "script comparison"))
+        if op in ("==", "!="):
+            return (abs(a - b) <= EPSILON) == (op == "==")
     return {"<": a < b, ">": a > b, "<=": a <= b, ">=": a >= b}[op]
 
 
