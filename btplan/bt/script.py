@@ -20,6 +20,8 @@ from dataclasses import dataclass
 
 from btplan.bt.blackboard import Blackboard, NodeError, Value, as_text, to_number
 
+MAX_CODE = 10_000
+"""Longest script read; BT.CPP scripts are one-liners."""
 EPSILON = 1.1920929e-07
 """Numbers closer than a float epsilon compare equal, as in BT.CPP."""
 
@@ -320,7 +322,12 @@ class Script:
 
     def __init__(self, code: str) -> None:
         self.code = code
-        self.statements = _Parser(code).statements()
+        if len(code) > MAX_CODE:
+            raise ScriptSyntaxError(f"a script longer than {MAX_CODE:,} characters", MAX_CODE)
+        try:
+            self.statements = _Parser(code).statements()
+        except RecursionError:
+            raise ScriptSyntaxError("the script is nested too deeply", 0) from None
 
     def run(self, board: Blackboard, enums: Mapping[str, int] | None = None) -> Value:
         env: Env = (board, enums or {})
@@ -334,4 +341,4 @@ class Script:
         return _truth(self.run(board, enums))
 
 
-__all__ = ["EPSILON", "Script", "ScriptSyntaxError"]
+__all__ = ["EPSILON", "MAX_CODE", "Script", "ScriptSyntaxError"]

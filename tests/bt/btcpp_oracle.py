@@ -103,6 +103,9 @@ class BtcppRun:
             return Status(self.tree.tick_exactly_once().name)
 
 
+UNREADABLE = "<not readable as text>"
+
+
 def _leaf_ids(root: ET.Element) -> dict[str, str]:
     """Custom leaf IDs and their kind, from the TreeNodesModel."""
     models = root.find("TreeNodesModel")
@@ -200,5 +203,5 @@ class BtcppDocRun:
             try:
                 out[key] = board.get_string(key)
             except RuntimeError:
-                continue  # created by a remapping, never written
+                out[key] = UNREADABLE  # never written, or not a text (a queue)
         return out

@@ -46,6 +46,8 @@ TICK_MS = 100
 """Milliseconds per tick when a BT.CPP time crosses to btplan (btplan acts at 10 Hz)."""
 MAX_NODES = 200_000
 """Most nodes a document may expand to once every SubTree is instantiated."""
+MAX_NESTING = 150
+"""Deepest nesting of nodes, SubTrees expanded; the builder recurses once per level."""
 
 
 @dataclass
@@ -68,6 +70,7 @@ class _Builder:
         self.strict = strict
         self.out = ImportedTrees(doc)
         self.count = 0
+        self.depth = 0
 
     # --- which ID is what ---------------------------------------------------------------
 
@@ -128,6 +131,16 @@ class _Builder:
         return root
 
     def node(self, element: Element, board: Blackboard, chain: tuple[str, ...]) -> Node:
+        self.depth += 1
+        try:
+            return self._node(element, board, chain)
+        finally:
+            self.depth -= 1
+
+    def _node(self, element: Element, board: Blackboard, chain: tuple[str, ...]) -> Node:
+        if self.depth > MAX_NESTING:
+            raise self.doc.error(element, f"the tree is nested more than {MAX_NESTING} deep "
+                                 "once its SubTrees are expanded")
         self.count += 1
         if self.count > MAX_NODES:
             raise self.doc.error(element, f"the trees expand to more than {MAX_NODES:,} nodes",
@@ -345,4 +358,4 @@ def build_tree(doc: XmlDocument, strict: bool = False) -> BehaviorTree:
     return tree
 
 
-__all__ = ["MAX_NODES", "TICK_MS", "ImportedTrees", "build_tree", "ticks"]
+__all__ = ["MAX_NESTING", "MAX_NODES", "TICK_MS", "ImportedTrees", "build_tree", "ticks"]
