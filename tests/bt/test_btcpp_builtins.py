@@ -76,6 +76,11 @@ CASES: list[tuple[str, str, int, dict[str, list[Status]], dict[int, tuple[set, s
      '<A _failureIf="x &gt; 6" _onFailure="y := 1"/><B _successIf="x == 5" '
      '_onSuccess="x += 1" _post="z := x"/></ReactiveSequence></Sequence>', 6,
      {"A": [R, S], "B": [S]}, {}),
+    ("subtree_ports", '<Sequence><Script code="goal := \'dock\'; speed := 1"/>'
+     '<SubTree ID="U" goal="{=}" fast="{speed}" mode="eco" _onSuccess="after := 1"/>'
+     '</Sequence></BehaviorTree><BehaviorTree ID="U"><Sequence><A _skipIf="mode != \'eco\'"/>'
+     '<Script code="fast += 1; goal = goal .. \'!\'; mine := mode"/></Sequence>', 4,
+     {"A": [R, S]}, {}),
     ("all_skipped", '<Sequence><Fallback><A _skipIf="true"/><B _skipIf="true"/></Fallback>'
      '<C/></Sequence>', 3, {"C": [S]}, {}),
 ]
@@ -108,3 +113,19 @@ def test_btcpp_and_btplan_agree(body: str, ticks: int, scripts: dict[str, list[S
             assert a is not None and b is not None and float(a) == pytest.approx(float(b))
         except ValueError:
             assert a == b, key
+
+
+def test_a_recorded_tick_of_an_imported_tree_keeps_its_conditions() -> None:
+    from btplan.bt import TickRecorder
+
+    text = (f'<root BTCPP_format="4"><BehaviorTree ID="T"><Sequence>'
+            '<Script code="n := 0"/><A _skipIf="n == 0" _post="n := 9"/><B _onSuccess="n += 1"/>'
+            f'</Sequence></BehaviorTree>{MODEL}</root>')
+    tree = load_xml(text)
+    recorder = TickRecorder()
+    recorder.attach(tree)
+    assert tree.tick(ScriptWorld((), {"B": [S]})) is SUCCESS
+    assert recorder.last is not None
+    assert [n.status for n in recorder.last.nodes][-1] is SUCCESS
+    assert tree.imported is not None and tree.imported.board.get("n") == 1.0
+    assert type(tree.root.children[1]).__name__ == "Action"
