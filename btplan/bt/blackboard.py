@@ -26,15 +26,18 @@ class NodeError(BtplanError):
 class Blackboard:
     """Entries of one tree instance, with the remapping to its parent's."""
 
-    __slots__ = ("autoremap", "parent", "remap", "seq", "values")
+    __slots__ = ("autoremap", "enums", "parent", "remap", "seq", "values")
 
     def __init__(self, parent: Blackboard | None = None, remap: dict[str, str] | None = None,
-                 autoremap: bool = False) -> None:
+                 autoremap: bool = False, enums: dict[str, int] | None = None) -> None:
         self.parent = parent
         self.remap = remap or {}
         self.autoremap = autoremap
         self.values: dict[str, Value] = {}
         self.seq: dict[str, int] = {}
+        # BT.CPP registers scripting enums in C++; the caller gives them when loading.
+        self.enums: dict[str, int] = (enums if enums is not None else
+                                      parent.enums if parent is not None else {})
 
     def root(self) -> Blackboard:
         board = self

@@ -10,8 +10,9 @@ every tick starts again at the first child.
   children right of the deciding one can be in that state: every child left of it was
   ticked on this tick and has already finished.
 
-A child that answers SKIPPED (BT.CPP 4's `_skipIf`) is passed over; when all were
-skipped the node answers SKIPPED itself.
+A child that answers SKIPPED (BT.CPP 4's `_skipIf`) is passed over. The variants in
+`controls.py` that trees read from BT.CPP XML use also answer SKIPPED when every child
+was skipped; these stay free of that count.
 
 With memory (memory=True; BT.CPP Sequence/Fallback): a RUNNING child is resumed on the
 next tick without re-ticking the children before it. The index is reset when the
@@ -21,14 +22,8 @@ node returns SUCCESS or FAILURE, and when it is halted.
 from __future__ import annotations
 
 from btplan.bt.node import Composite, Node
-from btplan.bt.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
+from btplan.bt.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
 from btplan.bt.world import World
-
-
-def _all_skipped(children: list[Node]) -> bool:
-    """Every child answered SKIPPED (a skipped node stays IDLE): BT.CPP 4 then skips the
-    parent too. Checked only when a loop ran to its end with an IDLE first child."""
-    return all(child.status is IDLE for child in children)
 
 
 class _Control(Composite):
@@ -55,9 +50,6 @@ class _Control(Composite):
                 self.status = status
                 return status
         self._current = 0
-        if children and children[0].status is IDLE and _all_skipped(children):
-            self.status = IDLE
-            return SKIPPED
         self.status = status = SUCCESS if stop_on is FAILURE else FAILURE
         return status
 

@@ -22,6 +22,70 @@ def _reset(node: Composite, world: World) -> None:
             child.halt(world)
 
 
+def _counting_tick(node: BtcppSequence | BtcppFallback, world: World) -> Status:
+    """BT.CPP's Sequence/Fallback loop, also counting SKIPPED children: when every child
+    of a run was skipped, the node answers SKIPPED (and, as BT.CPP, stays RUNNING).
+
+    As BT.CPP's resetChildren, a decision halts every other child still marked
+    RUNNING, which includes a composite that answered SKIPPED on an earlier tick.
+    """
+    children = node.children
+    stop_on = node.stop_on
+    start = node._current if node.memory else 0
+    if start == 0:
+        node.skipped = 0
+    for i in range(start, len(children)):
+        status = children[i].tick(world)
+        if status is RUNNING or status is stop_on:
+            left_too = status is not RUNNING or not node.memory
+            for j, other in enumerate(children):
+                if (j > i and other.status is not IDLE
+                        or j < i and left_too and other.status is RUNNING):
+                    other.halt(world)
+            node._current = i if status is RUNNING else 0
+            node.status = status
+            return status
+        if status is SKIPPED:
+            node.skipped += 1
+    node._current = 0
+    if node.skipped == len(children):
+        node.status = RUNNING
+        return SKIPPED
+    _reset(node, world)
+    node.status = status = SUCCESS if stop_on is FAILURE else FAILURE
+    return status
+
+
+class BtcppSequence(Sequence):
+    """A Sequence read from BT.CPP XML: the same ticks, plus SKIPPED when all children
+    were skipped (btplan's own Sequence leaves that count out of its hot loop)."""
+
+    __slots__ = ("skipped",)
+
+    def __init__(self, children: list[Node] | None = None, name: str = "",
+                 memory: bool = False) -> None:
+        super().__init__(children, name, memory)
+        self.skipped = 0
+
+    def tick(self, world: World) -> Status:
+        return _counting_tick(self, world)
+
+
+class BtcppFallback(Fallback):
+    """A Fallback read from BT.CPP XML: the same ticks, plus SKIPPED when all children
+    were skipped."""
+
+    __slots__ = ("skipped",)
+
+    def __init__(self, children: list[Node] | None = None, name: str = "",
+                 memory: bool = False) -> None:
+        super().__init__(children, name, memory)
+        self.skipped = 0
+
+    def tick(self, world: World) -> Status:
+        return _counting_tick(self, world)
+
+
 class SequenceWithMemory(Sequence):
     """BT.CPP SequenceWithMemory: like a memory Sequence, but a FAILURE does not rewind.
 
@@ -57,7 +121,7 @@ class SequenceWithMemory(Sequence):
                 return RUNNING
         self._current = 0
         _reset(self, world)
-        self.status = IDLE if skipped else SUCCESS
+        self.status = RUNNING if skipped else SUCCESS
         return SKIPPED if skipped else SUCCESS
 
 
@@ -151,7 +215,7 @@ class ParallelAll(Composite):
             elif status is SKIPPED:
                 skipped += 1
         if skipped == len(children):
-            self.status = IDLE
+            self.status = RUNNING  # what BT.CPP set before ticking the children
             return SKIPPED
         if skipped + len(self._done) < len(children):
             self.status = RUNNING
@@ -236,10 +300,12 @@ class WhileDoElse(Composite):
         return status
 
 
-def _same_case(value: str, case: str) -> bool:
-    """BT.CPP's string equality for Switch: the same text, or the same number."""
+def _same_case(value: str, case: str, enums: dict[str, int]) -> bool:
+    """BT.CPP's string equality for Switch: the same text, enum or number."""
     if value == case:
         return True
+    if value in enums or case in enums:
+        value, case = str(enums.get(value, value)), str(enums.get(case, case))
     try:
         return abs(to_number(value, "") - to_number(case, "")) <= 1.1920929e-07
     except Exception:  # noqa: BLE001 -- not two numbers: simply no match
@@ -273,7 +339,8 @@ class Switch(Composite):
         if variable is not None:
             for i in range(self.cases):
                 port = f"case_{i + 1}"
-                if port in self.ports.values and _same_case(variable, self.ports.text(port)):
+                if port in self.ports.values and _same_case(variable, self.ports.text(port),
+                                                                    self.ports.board.enums):
                     match = i
                     break
         children = self._children
@@ -286,7 +353,7 @@ class Switch(Composite):
             self._running = -1
             if status is not SKIPPED:
                 _reset(self, world)
-        self.status = IDLE if status is SKIPPED else status
+        self.status = RUNNING if status is SKIPPED else status
         return status
 
     def halt(self, world: World) -> None:
@@ -294,5 +361,62 @@ class Switch(Composite):
         super().halt(world)
 
 
-__all__ = ["AsyncFallback", "AsyncSequence", "IfThenElse", "ParallelAll", "SequenceWithMemory",
-           "Switch", "WhileDoElse"]
+class TryCatch(Composite):
+    """BT.CPP 4.10 TryCatch: children 1..N-1 run as a memory Sequence (the try block);
+    if one fails, the last child (the catch block) runs to its end and the node
+    returns FAILURE whatever it answered. SKIPPED try children are passed over. With
+    `catch_on_halt`, halting the node while the try block runs ticks the catch child
+    once (halting it if it answers RUNNING).
+
+    Newer than the BT.CPP the tests load: written from its documentation, not checked
+    tick by tick.
+    """
+
+    __slots__ = ("_catching", "_current", "ports")
+    kind = "TryCatch"
+
+    def __init__(self, children: list[Node] | None, ports: Ports, name: str = "") -> None:
+        super().__init__(children, name)
+        self.ports = ports
+        self._current = 0
+        self._catching = False
+
+    def tick(self, world: World) -> Status:
+        children = self._children
+        if not self._catching:
+            while self._current < len(children) - 1:
+                status = children[self._current].tick(world)
+                if status is RUNNING:
+                    self.status = RUNNING
+                    return RUNNING
+                if status is FAILURE:
+                    self._catching = True
+                    break
+                self._current += 1
+            else:
+                self._current = 0
+                _reset(self, world)
+                self.status = SUCCESS
+                return SUCCESS
+        status = children[-1].tick(world)
+        if status is RUNNING:
+            self.status = RUNNING
+            return RUNNING
+        self._current, self._catching = 0, False
+        _reset(self, world)
+        self.status = FAILURE
+        return FAILURE
+
+    def halt(self, world: World) -> None:
+        in_try = self.status is RUNNING and not self._catching
+        self._current, self._catching = 0, False
+        super().halt(world)
+        if in_try and self.ports.bool("catch_on_halt"):
+            catch = self._children[-1]
+            if catch.tick(world) is RUNNING:
+                catch.halt(world)
+        self.status = IDLE
+
+
+__all__ = ["AsyncFallback", "AsyncSequence", "BtcppFallback", "BtcppSequence", "IfThenElse", "ParallelAll", "SequenceWithMemory",
+           "Switch", "TryCatch", "WhileDoElse"]

@@ -5,7 +5,8 @@ a node that is not RUNNING is ticked: the first that applies decides the status
 without ticking the node (`_while` false means SKIPPED). While the node is RUNNING only
 `_while` is checked; when it turns false the node is halted and SKIPPED. After the
 node finishes, `_onSuccess` or `_onFailure` runs, then `_post`; `_onHalted` runs when
-a RUNNING node is halted. A SKIPPED node keeps its previous status, as in BT.CPP.
+a RUNNING node is halted. A node skipped this way keeps its previous status, as in
+BT.CPP (which does not store SKIPPED).
 
 A node with conditions gets its class switched to a guarded twin with the same slots
 (the trick the tracer uses), so nodes without conditions pay nothing.

@@ -59,7 +59,7 @@ class Repeat(Decorator):
                 self.status = FAILURE
                 return FAILURE
             else:
-                self.status = IDLE if status is SKIPPED else status
+                self.status = RUNNING if status is SKIPPED else status
                 return status
         self._count = 0
         self.status = SUCCESS
@@ -80,7 +80,7 @@ class KeepRunningUntilFailure(Decorator):
         status = self._children[0].tick(world)
         if status is SUCCESS:
             status = RUNNING
-        self.status = IDLE if status is SKIPPED else status
+        self.status = RUNNING if status is SKIPPED else status
         return status
 
 
@@ -99,7 +99,6 @@ class RunOnce(Decorator):
     def tick(self, world: World) -> Status:
         if self._result is not None:
             if self.ports.bool("then_skip"):
-                self.status = IDLE
                 return SKIPPED
             self.status = self._result
             return self._result
@@ -130,13 +129,13 @@ class Precondition(Decorator):
     def tick(self, world: World) -> Status:
         otherwise = status_port(self.ports, "else")
         if not self._running and not self.script.holds(self.ports.board):
-            self.status = IDLE if otherwise is SKIPPED else otherwise
+            self.status = RUNNING if otherwise is SKIPPED else otherwise
             return otherwise
         self._running = True
         status = self._children[0].tick(world)
         if status is not RUNNING:
             self._running = False
-        self.status = IDLE if status is SKIPPED else status
+        self.status = RUNNING if status is SKIPPED else status
         return status
 
     def halt(self, world: World) -> None:
@@ -163,7 +162,7 @@ class Delay(Decorator):
         status = self._children[0].tick(world)
         if status is not RUNNING:
             self._waited = -1
-        self.status = IDLE if status is SKIPPED else status
+        self.status = RUNNING if status is SKIPPED else status
         return status
 
     def halt(self, world: World) -> None:
@@ -224,7 +223,7 @@ class Loop(Decorator):
             item = self._pop()
             if item is None:
                 status = status_port(self.ports, "if_empty")
-                self.status = IDLE if status is SKIPPED else status
+                self.status = RUNNING if status is SKIPPED else status
                 return status
             if "value" in self.ports.values:
                 self.ports.write("value", self._convert(item))
@@ -260,14 +259,15 @@ class WhenUpdated(Decorator):
         if not self._active:
             seq = self.ports.board.sequence(self.ports.key("entry"))
             if seq == self._seen:
-                self.status = RUNNING if self.waits else IDLE
+                if self.waits:
+                    self.status = RUNNING
                 return RUNNING if self.waits else SKIPPED
             self._seen = seq
             self._active = True
         status = self._children[0].tick(world)
         if status is not RUNNING:
             self._active = False
-        self.status = IDLE if status is SKIPPED else status
+        self.status = RUNNING if status is SKIPPED else status
         return status
 
     def halt(self, world: World) -> None:

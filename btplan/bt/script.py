@@ -330,7 +330,7 @@ class Script:
             raise ScriptSyntaxError("the script is nested too deeply", 0) from None
 
     def run(self, board: Blackboard, enums: Mapping[str, int] | None = None) -> Value:
-        env: Env = (board, enums or {})
+        env: Env = (board, board.enums if enums is None else enums)
         value: Value = 0.0
         for statement in self.statements:
             value = statement(env)

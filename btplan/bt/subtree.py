@@ -10,7 +10,7 @@ from __future__ import annotations
 from btplan.bt.blackboard import Blackboard
 from btplan.bt.decorators import Decorator
 from btplan.bt.node import Node
-from btplan.bt.status import IDLE, SKIPPED, Status
+from btplan.bt.status import RUNNING, SKIPPED, Status
 from btplan.bt.world import World
 
 
@@ -27,7 +27,7 @@ class SubTree(Decorator):
 
     def tick(self, world: World) -> Status:
         status = self._children[0].tick(world)
-        self.status = IDLE if status is SKIPPED else status
+        self.status = RUNNING if status is SKIPPED else status
         return status
 
 

@@ -81,6 +81,9 @@ CASES: list[tuple[str, str, int, dict[str, list[Status]], dict[int, tuple[set, s
      '</Sequence></BehaviorTree><BehaviorTree ID="U"><Sequence><A _skipIf="mode != \'eco\'"/>'
      '<Script code="fast += 1; goal = goal .. \'!\'; mine := mode"/></Sequence>', 4,
      {"A": [R, S]}, {}),
+    ("skipped_later", '<Sequence><Script code="n := 0"/><Fallback><Sequence>'
+     '<A _skipIf="n &gt; 0" _onSuccess="n += 1"/></Sequence><B/></Fallback></Sequence>', 4,
+     {"A": [S], "B": [R, S]}, {}),
     ("all_skipped", '<Sequence><Fallback><A _skipIf="true"/><B _skipIf="true"/></Fallback>'
      '<C/></Sequence>', 3, {"C": [S]}, {}),
 ]

@@ -147,3 +147,42 @@ def test_an_unknown_format_version_is_refused() -> None:
     with pytest.raises(InputError, match="BTCPP_format='5' is not 3 or 4"):
         load_xml('<root BTCPP_format="5"><BehaviorTree ID="T"><AlwaysSuccess/></BehaviorTree>'
                  '</root>')
+
+
+def test_scripting_enums_are_given_by_the_caller_as_bt_cpp_registers_them_in_cpp() -> None:
+    text = HEAD + ('<BehaviorTree ID="T"><Sequence><Script code="c := GREEN"/>'
+                   '<Switch2 variable="{c}" case_1="RED" case_2="GREEN"><AlwaysFailure/>'
+                   '<AlwaysSuccess/><AlwaysFailure/></Switch2>'
+                   '<ScriptCondition code="c == GREEN &amp;&amp; RED &lt; c"/></Sequence>'
+                   '</BehaviorTree></root>')
+    tree = load_xml(text, enums={"RED": 1, "GREEN": 2})
+    assert tree.tick(None).value == "SUCCESS"  # type: ignore[arg-type]
+
+
+def test_an_explicit_id_that_cannot_be_a_tag_is_refused() -> None:
+    with pytest.raises(InputError, match="ID='a b' cannot be written as a tag"):
+        load_xml(HEAD + '<BehaviorTree ID="T"><Action ID="a b"/></BehaviorTree></root>')
+
+
+def test_a_script_that_does_not_parse_points_at_the_node_and_character() -> None:
+    text = HEAD + '<BehaviorTree ID="T">\n  <AlwaysSuccess _skipIf="x := "/>\n</BehaviorTree></root>'
+    with pytest.raises(InputError, match="in _skipIf: expected a value") as info:
+        load_xml(text, "t.xml")
+    assert info.value.span is not None and (info.value.span.line, info.value.span.column) == (3, 3)
+    assert info.value.hint == "at character 6 of 'x := '"
+
+
+def test_try_catch_runs_the_catch_block_after_a_failure() -> None:
+    from bt_stubs import ScriptWorld
+
+    from btplan.bt import FAILURE, RUNNING, SUCCESS
+
+    text = HEAD + ('<BehaviorTree ID="T"><TryCatch><A/><B/><Clean/></TryCatch></BehaviorTree>'
+                   '<TreeNodesModel><Action ID="A"/><Action ID="B"/><Action ID="Clean"/>'
+                   '</TreeNodesModel></root>')
+    tree = load_xml(text)
+    world = ScriptWorld((), {"A": [SUCCESS], "B": [RUNNING, FAILURE, SUCCESS],
+                             "Clean": [RUNNING, SUCCESS]})
+    assert [tree.tick(world) for _ in range(5)] == [RUNNING, RUNNING, FAILURE, SUCCESS, SUCCESS]
+    assert world.log[:5] == [("start", "A()"), ("start", "B()"), ("step", "B()"),
+                             ("start", "Clean()"), ("step", "Clean()")]

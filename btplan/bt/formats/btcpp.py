@@ -12,11 +12,13 @@ TICK_MS milliseconds both ways.
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from collections.abc import Sequence as Seq
 from xml.sax.saxutils import quoteattr
 
 from btplan.bt.composites import Fallback, Sequence
 from btplan.bt.decorators import ForceFailure, ForceSuccess, Inverter, Retry, Timeout
+from btplan.bt.formats.btcpp_catalog import BUILTINS
 from btplan.bt.formats.btcpp_files import read_document
 from btplan.bt.formats.btcpp_models import ModelEntry, ModelPort, write_models
 from btplan.bt.formats.btcpp_read import TICK_MS, ImportedTrees, build_tree
@@ -30,8 +32,7 @@ _BAD_ID = re.compile(r"[\s<>&\"'/\\:*?|.]|[\x00-\x1f]")
 _PORT = re.compile(r"[A-Za-z][A-Za-z0-9_]*")
 _RESERVED_PORTS = {"name", "ID", "_autoremap"}
 _RESERVED_IDS = {"Root", "root"}
-_BUILTIN = {"ReactiveSequence", "ReactiveFallback", "Sequence", "Fallback", "Parallel",
-            "Inverter", "ForceSuccess", "ForceFailure", "RetryUntilSuccessful", "Timeout"}
+_BUILTIN = set(BUILTINS)
 
 
 class ExportError(InputError):
@@ -176,15 +177,17 @@ def _dump_imported(tree: BehaviorTree, imported: ImportedTrees) -> str:
 
 
 def load_xml(text: str, path: str = "<tree>", models: Seq[tuple[str, str]] = (),
-             tree_id: str | None = None, strict: bool = False) -> BehaviorTree:
+             tree_id: str | None = None, strict: bool = False,
+             enums: Mapping[str, int] | None = None) -> BehaviorTree:
     """Read a BT.CPP document (version 3 or 4) with its includes.
 
     `models` are (text, path) pairs of extra TreeNodesModel files; `tree_id` picks the
     tree to execute; `strict` refuses custom nodes no model declares instead of
-    inferring them. Warnings end up in `tree.imported.doc.warnings`.
+    inferring them; `enums` are the scripting enums BT.CPP would register in C++.
+    Warnings end up in `tree.imported.doc.warnings`.
     """
     doc = read_document(text, path, models, tree_id)
-    return build_tree(doc, strict)
+    return build_tree(doc, strict, enums)
 
 
 __all__ = ["TICK_MS", "ExportError", "dump_xml", "load_xml"]

@@ -1,7 +1,7 @@
 """The built-in nodes of BehaviorTree.CPP 4 and their ports, as the reader checks them.
 
-Checked against the factory of BT.CPP 4.8 (the version the tests load): every ID it
-registers by itself, the kind of each, how many children it takes and the ports it
+Checked against the factory of BT.CPP 4.8 (the version the tests load) and of 4.10
+(which adds TryCatch): every ID it registers by itself, the kind of each, how many children it takes and the ports it
 declares, with their defaults. Custom nodes are described by a TreeNodesModel instead
 (`btcpp_models`).
 """
@@ -63,6 +63,7 @@ BUILTINS: dict[str, BuiltinSpec] = {
     "ParallelAll": _control(PortSpec("max_failures", type="int", default="1")),
     "IfThenElse": _control(least=2, most=3),
     "WhileDoElse": _control(least=2, most=3),
+    "TryCatch": _control(PortSpec("catch_on_halt", type="bool", default="false"), least=2),
     **{f"Switch{n}": _control(PortSpec("variable"),
                               *(PortSpec(f"case_{i}") for i in range(1, n + 1)),
                               least=n + 1, most=n + 1)
@@ -95,7 +96,7 @@ BUILTINS: dict[str, BuiltinSpec] = {
     "WasEntryUpdated": _leaf("Condition", PortSpec("entry")),
     "SubTree": BuiltinSpec("SubTree", (PortSpec("_autoremap", type="bool", default="false"),)),
 }
-"""Every ID BehaviorTree.CPP 4.8's factory registers by itself."""
+"""Every ID BehaviorTree.CPP 4.8's factory registers by itself, and TryCatch (4.10)."""
 
 PRE_POST = ("_failureIf", "_successIf", "_skipIf", "_while",
             "_onSuccess", "_onFailure", "_post", "_onHalted")

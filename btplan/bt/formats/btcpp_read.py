@@ -10,7 +10,8 @@ as it was read. Each tree instance gets its own blackboard, remapped as BT.CPP d
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+import re
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from difflib import get_close_matches
 
@@ -19,10 +20,9 @@ from btplan.bt.actions import (
     WasEntryUpdated,
 )
 from btplan.bt.blackboard import Blackboard, Ports, pointer
-from btplan.bt.composites import Fallback, Sequence
 from btplan.bt.controls import (
-    AsyncFallback, AsyncSequence, IfThenElse, ParallelAll, SequenceWithMemory, Switch,
-    WhileDoElse,
+    AsyncFallback, AsyncSequence, BtcppFallback, BtcppSequence, IfThenElse, ParallelAll, SequenceWithMemory, Switch,
+    TryCatch, WhileDoElse,
 )
 from btplan.bt.custom import BoundAction, BoundCondition, Opaque
 from btplan.bt.decorators import ForceFailure, ForceSuccess, Inverter, Retry, Timeout
@@ -42,6 +42,7 @@ from btplan.bt.status import FAILURE, SUCCESS
 from btplan.bt.subtree import SubTree
 from btplan.bt.tree import BehaviorTree
 
+_TAG = re.compile(r"[^\W\d][\w\-]*")
 TICK_MS = 100
 """Milliseconds per tick when a BT.CPP time crosses to btplan (btplan acts at 10 Hz)."""
 MAX_NODES = 200_000
@@ -79,6 +80,10 @@ class _Builder:
             ident = element.attrs.get("ID")
             if not ident:
                 raise self.doc.error(element, f"<{element.tag}> needs an ID attribute")
+            if not _TAG.fullmatch(ident):
+                raise self.doc.error(element, f"ID={short(ident)!r} cannot be written as a tag",
+                                     "BT.CPP's compact form needs a name made of letters, "
+                                     "digits, '_' and '-'")
             return ident
         return element.tag
 
@@ -252,16 +257,18 @@ class _Builder:
         io = Ports(f"{ident} {name!r}" if name else ident, ports, board, defaults)
         kids = self.children(element, board, chain)
         one = kids[0] if kids else None
-        simple: dict[str, Callable[[], Node]] = {"Sequence": lambda: Sequence(kids, name, memory=True),
-                  "ReactiveSequence": lambda: Sequence(kids, name),
-                  "Fallback": lambda: Fallback(kids, name, memory=True),
-                  "ReactiveFallback": lambda: Fallback(kids, name),
+        simple: dict[str, Callable[[], Node]] = {
+                  "Sequence": lambda: BtcppSequence(kids, name, memory=True),
+                  "ReactiveSequence": lambda: BtcppSequence(kids, name),
+                  "Fallback": lambda: BtcppFallback(kids, name, memory=True),
+                  "ReactiveFallback": lambda: BtcppFallback(kids, name),
                   "SequenceWithMemory": lambda: SequenceWithMemory(kids, name),
                   "AsyncSequence": lambda: AsyncSequence(kids, name),
                   "AsyncFallback": lambda: AsyncFallback(kids, name),
                   "ParallelAll": lambda: ParallelAll(kids, io, name),
                   "IfThenElse": lambda: IfThenElse(kids, name),
                   "WhileDoElse": lambda: WhileDoElse(kids, name),
+                  "TryCatch": lambda: TryCatch(kids, io, name),
                   "Inverter": lambda: Inverter(one, name),
                   "ForceSuccess": lambda: ForceSuccess(one, name),
                   "ForceFailure": lambda: ForceFailure(one, name),
@@ -343,16 +350,21 @@ class _Builder:
         return Opaque(ident, entry.kind, self.children(element, board, chain), name)
 
 
-def build_tree(doc: XmlDocument, strict: bool = False) -> BehaviorTree:
+def build_tree(doc: XmlDocument, strict: bool = False,
+               enums: Mapping[str, int] | None = None) -> BehaviorTree:
     """The main tree of `doc`, ticking on its own blackboard; every other tree of the
-    document is instantiated too (as BT.CPP checks them all) for the export."""
+    document is instantiated too (as BT.CPP checks them all) for the export.
+
+    `enums` are the scripting enums BT.CPP would have registered in C++ (`RED` -> 1).
+    """
     builder = _Builder(doc, strict)
     builder.prescan()
     board = builder.out.board
+    board.enums.update(enums or {})
     root = builder.tree_root(doc.main, board, (doc.main,))
     for tree_id in doc.trees:
         if tree_id not in builder.out.roots:
-            builder.tree_root(tree_id, Blackboard(), (tree_id,))
+            builder.tree_root(tree_id, Blackboard(enums=board.enums), (tree_id,))
     tree = BehaviorTree(root, name=doc.main)
     tree.imported = builder.out
     return tree
