@@ -8,9 +8,10 @@ child (it answers RUNNING to give other work a turn) from an asynchronous one.
 
 from __future__ import annotations
 
-from btplan.bt.blackboard import Ports, to_number
+from btplan.bt.blackboard import NodeError, Ports, to_number
 from btplan.bt.composites import Fallback, Sequence
 from btplan.bt.node import Composite, Node
+from btplan.bt.parallel import Parallel
 from btplan.bt.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 from btplan.bt.world import World
 
@@ -124,6 +125,13 @@ class SequenceWithMemory(Sequence):
         self.status = RUNNING if skipped else SUCCESS
         return SKIPPED if skipped else SUCCESS
 
+    def halt(self, world: World) -> None:
+        """Only a RUNNING node rewinds: halting one that failed is BT.CPP's resetStatus,
+        which keeps the index of the child that failed."""
+        if self.status is RUNNING:
+            self._current = 0
+        Composite.halt(self, world)
+
 
 class _Async:
     """AsyncSequence / AsyncFallback: a memory composite that returns RUNNING after a
@@ -181,6 +189,47 @@ class AsyncFallback(Fallback):
 
     def tick(self, world: World) -> Status:
         return _Async.run(self, world, FAILURE)
+
+
+class BtcppParallel(Parallel):
+    """A Parallel read from BT.CPP XML: SKIPPED children count as BT.CPP 4.8 counts them.
+
+    A skipped child counts towards success when the success threshold is relative
+    (negative); when every child was skipped the node answers SKIPPED.
+    """
+
+    __slots__ = ()
+
+    def tick(self, world: World) -> Status:
+        children = self._children
+        need_success = self._threshold(self.success)
+        need_failure = self._threshold(self.failure)
+        skipped = 0
+        for i, child in enumerate(children):
+            if i not in self._done:
+                status = child.tick(world)
+                if status is SKIPPED:
+                    skipped += 1
+                elif status is SUCCESS or status is FAILURE:
+                    self._done.add(i)
+                    if status is SUCCESS:
+                        self._successes += 1
+                    else:
+                        self._failures += 1
+            if (self._successes >= need_success
+                    or self.success < 0 and self._successes + skipped >= need_success):
+                self._reset()
+                _reset(self, world)
+                self.status = SUCCESS
+                return SUCCESS
+            if (len(children) - self._failures < need_success
+                    or self._failures == need_failure):
+                self._reset()
+                _reset(self, world)
+                self.status = FAILURE
+                return FAILURE
+        self.status = RUNNING
+        return SKIPPED if skipped == len(children) else RUNNING
 
 
 class ParallelAll(Composite):
@@ -250,6 +299,9 @@ class IfThenElse(Composite):
         children = self._children
         if self._branch == 0:
             status = children[0].tick(world)
+            if status is SKIPPED:
+                raise NodeError("IfThenElse: its condition was skipped, which BT.CPP 4.8 "
+                                "stops on as an error too")
             if status is SUCCESS:
                 self._branch = 1
             elif status is FAILURE and len(children) == 3:
@@ -418,5 +470,5 @@ class TryCatch(Composite):
         self.status = IDLE
 
 
-__all__ = ["AsyncFallback", "AsyncSequence", "BtcppFallback", "BtcppSequence", "IfThenElse", "ParallelAll", "SequenceWithMemory",
+__all__ = ["AsyncFallback", "AsyncSequence", "BtcppFallback", "BtcppParallel", "BtcppSequence", "IfThenElse", "ParallelAll", "SequenceWithMemory",
            "Switch", "TryCatch", "WhileDoElse"]

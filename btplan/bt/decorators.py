@@ -9,7 +9,7 @@ early (Timeout) halt it before returning.
 from __future__ import annotations
 
 from btplan.bt.node import Composite, Node
-from btplan.bt.status import FAILURE, RUNNING, SUCCESS, Status
+from btplan.bt.status import FAILURE, RUNNING, SKIPPED, SUCCESS, Status
 from btplan.bt.world import World
 
 
@@ -54,25 +54,31 @@ class Inverter(Decorator):
 
 
 class ForceSuccess(Decorator):
-    """SUCCESS whether the child succeeded or failed; RUNNING passes through."""
+    """SUCCESS whether the child succeeded or failed; RUNNING (and SKIPPED) pass through."""
 
     __slots__ = ()
     kind = "ForceSuccess"
 
     def tick(self, world: World) -> Status:
         status = self._children[0].tick(world)
+        if status is SKIPPED:  # passed on, as in BT.CPP 4
+            self.status = RUNNING
+            return status
         self.status = status = RUNNING if status is RUNNING else SUCCESS
         return status
 
 
 class ForceFailure(Decorator):
-    """FAILURE whether the child succeeded or failed; RUNNING passes through."""
+    """FAILURE whether the child succeeded or failed; RUNNING (and SKIPPED) pass through."""
 
     __slots__ = ()
     kind = "ForceFailure"
 
     def tick(self, world: World) -> Status:
         status = self._children[0].tick(world)
+        if status is SKIPPED:
+            self.status = RUNNING
+            return status
         self.status = status = RUNNING if status is RUNNING else FAILURE
         return status
 

@@ -78,9 +78,9 @@ class KeepRunningUntilFailure(Decorator):
 
     def tick(self, world: World) -> Status:
         status = self._children[0].tick(world)
-        if status is SUCCESS:
+        if status is SUCCESS or status is SKIPPED:  # BT.CPP 4.8 keeps running on a skip
             status = RUNNING
-        self.status = RUNNING if status is SKIPPED else status
+        self.status = status
         return status
 
 

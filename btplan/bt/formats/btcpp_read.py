@@ -21,7 +21,7 @@ from btplan.bt.actions import (
 )
 from btplan.bt.blackboard import Blackboard, Ports, pointer
 from btplan.bt.controls import (
-    AsyncFallback, AsyncSequence, BtcppFallback, BtcppSequence, IfThenElse, ParallelAll, SequenceWithMemory, Switch,
+    AsyncFallback, AsyncSequence, BtcppFallback, BtcppParallel, BtcppSequence, IfThenElse, ParallelAll, SequenceWithMemory, Switch,
     TryCatch, WhileDoElse,
 )
 from btplan.bt.custom import BoundAction, BoundCondition, Opaque
@@ -36,7 +36,6 @@ from btplan.bt.loops import (
     Delay, KeepRunningUntilFailure, Loop, Precondition, Repeat, RunOnce, WhenUpdated,
 )
 from btplan.bt.node import Node, Origin
-from btplan.bt.parallel import Parallel
 from btplan.bt.script import Script, ScriptSyntaxError
 from btplan.bt.status import FAILURE, SUCCESS
 from btplan.bt.subtree import SubTree
@@ -301,8 +300,8 @@ class _Builder:
     def timed(self, element: Element, ident: str, ports: dict[str, str], name: str,
               kids: list[Node]) -> Node:
         if ident == "Parallel":
-            return Parallel(kids, self.number(element, ports, "success_count", "-1"),
-                            self.number(element, ports, "failure_count", "1"), name)
+            return BtcppParallel(kids, self.number(element, ports, "success_count", "-1"),
+                                 self.number(element, ports, "failure_count", "1"), name)
         if ident == "RetryUntilSuccessful":
             attempts = self.number(element, ports, "num_attempts", "1")
             if attempts < 1 and attempts != -1:
