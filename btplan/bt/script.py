@@ -7,8 +7,10 @@ comparisons (`== != < > <= >=`); `+ - * /`; the bit operators `& | ^ ~`; unary `
 quotes, `true`/`false`, blackboard names (`@name` is the root blackboard) and enum names
 given by the caller. As in BT.CPP, every arithmetic result is a real number, a
 comparison or logic result is 1 or 0, a string compared with a number is read as a
-number (an error if it is not one), and equality of numbers allows a float epsilon. A syntax error is a ScriptSyntaxError with the offset of
-the offending character, so the reader can point at it in the file.
+number (an error if it is not one), and equality of numbers allows a float epsilon.
+Unlike BT.CPP, math and bit operators may be mixed without parentheses (C precedence).
+A syntax error is a ScriptSyntaxError with the offset of the offending character, so
+the reader can point at it in the file.
 """
 
 from __future__ import annotations

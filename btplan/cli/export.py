@@ -7,10 +7,9 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
-
-from btplan.bt.formats import dump, json_schema, load_tree
 from rich.markup import escape
 
+from btplan.bt.formats import dump, json_schema, load_tree
 from btplan.cli.app import app, guarded, stderr
 from btplan.errors import InputError, Span
 from btplan.io import STDIO, read_text, write_atomic

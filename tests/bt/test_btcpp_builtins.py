@@ -52,7 +52,8 @@ CASES: list[tuple[str, str, int, dict[str, list[Status]], dict[int, tuple[set, s
     ("precondition", '<Sequence><Script code="go := 1"/><Precondition if="go == 1" '
      'else="SKIPPED"><A/></Precondition><Script code="go := 0"/></Sequence>', 6,
      {"A": [R, R, S]}, {}),
-    ("loop_string", '<Sequence><Script code="q := \'a;b;c\'; seen := \'\'"/><LoopString queue="{q}" '
+    ("loop_string", '<Sequence><Script code="q := \'a;b;c\'; seen := \'\'"/>'
+     '<LoopString queue="{q}" '
      'value="{item}" if_empty="SUCCESS"><A _onSuccess="seen := seen .. item" /></LoopString>'
      '</Sequence>', 8, {"A": [R, S]}, {}),
     ("loop_bool", '<LoopBool queue="true;false;true" value="{flag}"><Inverter>'

@@ -165,7 +165,8 @@ def test_an_explicit_id_that_cannot_be_a_tag_is_refused() -> None:
 
 
 def test_a_script_that_does_not_parse_points_at_the_node_and_character() -> None:
-    text = HEAD + '<BehaviorTree ID="T">\n  <AlwaysSuccess _skipIf="x := "/>\n</BehaviorTree></root>'
+    text = HEAD + ('<BehaviorTree ID="T">\n  <AlwaysSuccess _skipIf="x := "/>\n'
+                   '</BehaviorTree></root>')
     with pytest.raises(InputError, match="in _skipIf: expected a value") as info:
         load_xml(text, "t.xml")
     assert info.value.span is not None and (info.value.span.line, info.value.span.column) == (3, 3)

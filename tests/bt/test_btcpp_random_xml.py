@@ -55,8 +55,8 @@ def _node(rng: random.Random, depth: int) -> str:
         attrs = {"Repeat": f' num_cycles="{rng.randint(1, 3)}"',
                  "RetryUntilSuccessful": f' num_attempts="{rng.randint(1, 3)}"',
                  "RunOnce": f' then_skip="{rng.choice(["true", "false"])}"',
-                 "Precondition": f' if="{_condition(rng)}" else="{rng.choice(["FAILURE", "SUCCESS"])}"'
-                 }.get(tag, "")
+                 "Precondition": f' if="{_condition(rng)}" '
+                                 f'else="{rng.choice(["FAILURE", "SUCCESS"])}"'}.get(tag, "")
         return f"<{tag}{attrs}{guards}>{_node(rng, depth - 1)}</{tag}>"
     tag = rng.choice(CONTROLS)
     count = {"IfThenElse": rng.randint(2, 3), "WhileDoElse": rng.randint(2, 3), "Switch2": 3

@@ -1,4 +1,4 @@
-"""Untrusted XML: no entity expansion, no external entities, bounded size and depth, no traceback."""
+"""Untrusted XML: no entities, no external files, bounded size and depth, never a traceback."""
 
 from __future__ import annotations
 

@@ -1,9 +1,9 @@
 """The built-in nodes of BehaviorTree.CPP 4 and their ports, as the reader checks them.
 
 Checked against the factory of BT.CPP 4.8 (the version the tests load) and of 4.10
-(which adds TryCatch): every ID it registers by itself, the kind of each, how many children it takes and the ports it
-declares, with their defaults. Custom nodes are described by a TreeNodesModel instead
-(`btcpp_models`).
+(which adds TryCatch): every ID it registers by itself, the kind of each, how many
+children it takes and the ports it declares, with their defaults. Custom nodes are
+described by a TreeNodesModel instead (`btcpp_models`).
 """
 
 from __future__ import annotations

@@ -16,13 +16,25 @@ from dataclasses import dataclass, field
 from difflib import get_close_matches
 
 from btplan.bt.actions import (
-    Constant, ScriptAction, ScriptCondition, SetBlackboard, Sleep, UnsetBlackboard,
+    Constant,
+    ScriptAction,
+    ScriptCondition,
+    SetBlackboard,
+    Sleep,
+    UnsetBlackboard,
     WasEntryUpdated,
 )
 from btplan.bt.blackboard import Blackboard, Ports, pointer
+from btplan.bt.btcpp_composites import BtcppFallback, BtcppParallel, BtcppSequence
 from btplan.bt.controls import (
-    AsyncFallback, AsyncSequence, BtcppFallback, BtcppParallel, BtcppSequence, IfThenElse, ParallelAll, SequenceWithMemory, Switch,
-    TryCatch, WhileDoElse,
+    AsyncFallback,
+    AsyncSequence,
+    IfThenElse,
+    ParallelAll,
+    SequenceWithMemory,
+    Switch,
+    TryCatch,
+    WhileDoElse,
 )
 from btplan.bt.custom import BoundAction, BoundCondition, Opaque
 from btplan.bt.decorators import ForceFailure, ForceSuccess, Inverter, Retry, Timeout
@@ -33,7 +45,13 @@ from btplan.bt.formats.xmlparse import Element
 from btplan.bt.guard import guard
 from btplan.bt.leaves import Action, Condition
 from btplan.bt.loops import (
-    Delay, KeepRunningUntilFailure, Loop, Precondition, Repeat, RunOnce, WhenUpdated,
+    Delay,
+    KeepRunningUntilFailure,
+    Loop,
+    Precondition,
+    Repeat,
+    RunOnce,
+    WhenUpdated,
 )
 from btplan.bt.node import Node, Origin
 from btplan.bt.script import Script, ScriptSyntaxError
@@ -154,7 +172,8 @@ class _Builder:
                  if not (element.tag in EXPLICIT_TAGS and k == "ID")}
         name = attrs.get("name", "")
         scripts = {k: self.script(element, k, v) for k, v in attrs.items() if k in PRE_POST}
-        ports = {k: v for k, v in attrs.items() if k != "name" and not k.startswith("_")}
+        ports = {k: v for k, v in attrs.items()
+                 if k != "name" and not k.startswith("_")}
         if ident == "SubTree":
             node = self.subtree(element, attrs, name, board, chain)
         elif ident in BUILTINS:
@@ -170,8 +189,10 @@ class _Builder:
         try:
             return Script(code)
         except ScriptSyntaxError as error:
-            raise self.doc.error(element, f"in {attr}: {error.message}",
-                                 f"at character {error.offset + 1} of {short(code, 50)!r}") from None
+            start = max(0, error.offset - 30)
+            window = ("..." if start else "") + short(code[start:], 60)
+            hint = f"at character {error.offset + 1} of {window!r}"
+            raise self.doc.error(element, f"in {attr}: {error.message}", hint) from None
 
     def children(self, element: Element, board: Blackboard, chain: tuple[str, ...]) -> list[Node]:
         return [self.node(child, board, chain) for child in element.children]
