@@ -237,8 +237,13 @@ class _Parser:
             return inner
         if tok.kind == "number":
             text = tok.text
-            value: Value = (int(text, 16) if text[:2] in ("0x", "0X") else
-                            int(text) if text.isdigit() else float(text))
+            try:
+                value: Value = (int(text, 16) if text[:2] in ("0x", "0X") else
+                                int(text) if text.isdigit() else float(text))
+            except ValueError:  # more digits than Python converts
+                raise ScriptSyntaxError("this number is too long", tok.at) from None
+            if isinstance(value, int) and not -2**63 <= value < 2**63:
+                raise ScriptSyntaxError("this number does not fit in 64 bits", tok.at)
             return lambda env: value
         if tok.kind == "string":
             literal = tok.text[1:-1]

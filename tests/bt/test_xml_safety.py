@@ -60,3 +60,13 @@ def test_random_bytes_never_escape_as_anything_but_input_errors(seed: int) -> No
         load_tree(text, "xml", "fuzz.xml")
     except InputError:
         pass
+
+
+@pytest.mark.parametrize(("code", "message"), [
+    ("x := " + "9" * 5000, "too long"), ("x := 0x" + "f" * 40, "64 bits"),
+    ("x := " + "(" * 3000, "nested too deeply")])
+def test_hostile_scripts_are_refused_when_read(code: str, message: str) -> None:
+    text = ('<root BTCPP_format="4"><BehaviorTree ID="T">'
+            f'<Script code="{code}"/></BehaviorTree></root>')
+    with pytest.raises(InputError, match=message):
+        load_tree(text, "xml", "s.xml")
