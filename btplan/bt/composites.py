@@ -11,8 +11,8 @@ every tick starts again at the first child.
   ticked on this tick and has already finished.
 
 A child that answers SKIPPED (BT.CPP 4's `_skipIf`) is passed over. The variants in
-`controls.py` that trees read from BT.CPP XML use also answer SKIPPED when every child
-was skipped; these stay free of that count.
+`btcpp_composites.py` that trees read from BT.CPP XML use also answer SKIPPED when all
+children were skipped; these stay free of that count.
 
 With memory (memory=True; BT.CPP Sequence/Fallback): a RUNNING child is resumed on the
 next tick without re-ticking the children before it. The index is reset when the
