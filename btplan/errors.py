@@ -48,6 +48,26 @@ class InputError(BtplanError):
         where = f"{self.span}: " if self.span else ""
         return f"{where}{self.message}" + (f" ({self.hint})" if self.hint else "")
 
+    def excerpt(self, width: int = 100) -> tuple[str, int] | None:
+        """At most `width` characters of the offending line around the column, and the
+        caret's offset in them; a minified file is one huge line, and printing all of it
+        would bury the message."""
+        if self.source_line is None or self.span is None:
+            return None
+        text = self.source_line.rstrip("\n").expandtabs(1)
+        caret = max(self.span.column - 1, 0)
+        if len(text) <= width:
+            return text, caret
+        start = min(max(caret - width // 2, 0), max(len(text) - width, 0))
+        cut = text[start:start + width]
+        if start > 0:
+            cut, caret = "..." + cut[3:], caret - start
+        else:
+            caret -= start
+        if start + width < len(text):
+            cut = cut[:-3] + "..."
+        return cut, min(caret, len(cut))
+
 
 class PlanningError(BtplanError):
     """The planner could not produce a tree that reaches the goal; the CLI exits 1."""

@@ -10,6 +10,10 @@ every tick starts again at the first child.
   children right of the deciding one can be in that state: every child left of it was
   ticked on this tick and has already finished.
 
+A child that answers SKIPPED (BT.CPP 4's `_skipIf`) is passed over. The variants in
+`btcpp_composites.py` that trees read from BT.CPP XML use also answer SKIPPED when all
+children were skipped; these stay free of that count.
+
 With memory (memory=True; BT.CPP Sequence/Fallback): a RUNNING child is resumed on the
 next tick without re-ticking the children before it. The index is reset when the
 node returns SUCCESS or FAILURE, and when it is halted.

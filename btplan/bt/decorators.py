@@ -9,7 +9,7 @@ early (Timeout) halt it before returning.
 from __future__ import annotations
 
 from btplan.bt.node import Composite, Node
-from btplan.bt.status import FAILURE, RUNNING, SUCCESS, Status
+from btplan.bt.status import FAILURE, RUNNING, SKIPPED, SUCCESS, Status
 from btplan.bt.world import World
 
 
@@ -54,25 +54,31 @@ class Inverter(Decorator):
 
 
 class ForceSuccess(Decorator):
-    """SUCCESS whether the child succeeded or failed; RUNNING passes through."""
+    """SUCCESS whether the child succeeded or failed; RUNNING (and SKIPPED) pass through."""
 
     __slots__ = ()
     kind = "ForceSuccess"
 
     def tick(self, world: World) -> Status:
         status = self._children[0].tick(world)
+        if status is SKIPPED:  # passed on, as in BT.CPP 4
+            self.status = RUNNING
+            return status
         self.status = status = RUNNING if status is RUNNING else SUCCESS
         return status
 
 
 class ForceFailure(Decorator):
-    """FAILURE whether the child succeeded or failed; RUNNING passes through."""
+    """FAILURE whether the child succeeded or failed; RUNNING (and SKIPPED) pass through."""
 
     __slots__ = ()
     kind = "ForceFailure"
 
     def tick(self, world: World) -> Status:
         status = self._children[0].tick(world)
+        if status is SKIPPED:
+            self.status = RUNNING
+            return status
         self.status = status = RUNNING if status is RUNNING else FAILURE
         return status
 
@@ -81,6 +87,7 @@ class Retry(Decorator):
     """Gives a failing child up to `attempts` tries (BT.CPP RetryUntilSuccessful).
 
     Child SUCCESS: SUCCESS, and the count starts again. Child RUNNING: RUNNING.
+    `attempts=-1` retries for ever, as BT.CPP's `num_attempts="-1"`.
     Child FAILURE uses up one attempt; after the last one the decorator returns FAILURE.
     While attempts remain, what happens next follows BT.CPP 4: a child that failed at
     once (it was not RUNNING before this tick) is tried again on the next tick, and the
@@ -92,8 +99,8 @@ class Retry(Decorator):
     kind = "Retry"
 
     def __init__(self, child: Node | None = None, attempts: int = 1, name: str = "") -> None:
-        if attempts < 1:
-            raise ValueError(f"Retry needs at least one attempt, got {attempts}")
+        if attempts < 1 and attempts != -1:
+            raise ValueError(f"Retry needs at least one attempt (or -1), got {attempts}")
         super().__init__(child, name)
         self.attempts = attempts
         self._failures = 0
@@ -108,7 +115,7 @@ class Retry(Decorator):
                     self._failures = 0
                 break
             self._failures += 1
-            if self._failures >= self.attempts:
+            if 0 < self.attempts <= self._failures:
                 self._failures = 0
                 break
             if fresh:

@@ -8,6 +8,23 @@ from btplan.bt.status import IDLE, Status
 from btplan.bt.world import World
 
 
+class Origin:
+    """Where a node read from BT.CPP XML came from: its tag and attributes as written.
+
+    The XML export writes them back unchanged, so an imported tree leaves btplan node
+    for node; `guard` holds its compiled pre/post-condition scripts, if any. The tick
+    never reads this: plain nodes cost nothing for it.
+    """
+
+    __slots__ = ("attrs", "guard", "tag")
+
+    def __init__(self, tag: str, attrs: tuple[tuple[str, str], ...], guard: object = None
+                 ) -> None:
+        self.tag = tag
+        self.attrs = attrs
+        self.guard = guard
+
+
 class Node:
     """A node of a Behavior Tree.
 
@@ -16,13 +33,14 @@ class Node:
     (IncreasePriority) without searching the whole tree.
     """
 
-    __slots__ = ("name", "parent", "status")
+    __slots__ = ("name", "origin", "parent", "status")
     kind: ClassVar[str] = "Node"
 
     def __init__(self, name: str = "") -> None:
         self.name = name
         self.status: Status = IDLE
         self.parent: Composite | None = None
+        self.origin: Origin | None = None
 
     @property
     def children(self) -> list[Node]:

@@ -10,6 +10,7 @@ from btplan.bt.status import Status
 from btplan.bt.world import World
 
 if TYPE_CHECKING:
+    from btplan.bt.formats.btcpp_read import ImportedTrees
     from btplan.bt.trace import TickRecorder
 
 
@@ -19,10 +20,11 @@ class BehaviorTree:
     With `debug=True` every tick goes through `StrictWorld`, which raises when a
     condition answers RUNNING or an action answers something that is not a status.
     With a `recorder` (see `btplan.bt.trace.TickRecorder`), every tick is recorded;
-    without one, ticking costs nothing extra.
+    without one, ticking costs nothing extra. `imported` holds what a tree read from
+    BT.CPP XML needs to be written back node for node (its other trees, its models).
     """
 
-    __slots__ = ("debug", "name", "recorder", "root", "ticks")
+    __slots__ = ("debug", "imported", "name", "recorder", "root", "ticks")
 
     def __init__(self, root: Node, name: str = "Main", debug: bool = False) -> None:
         self.root = root
@@ -30,6 +32,7 @@ class BehaviorTree:
         self.name = name
         self.debug = debug
         self.recorder: TickRecorder | None = None
+        self.imported: ImportedTrees | None = None
 
     def tick(self, world: World) -> Status:
         self.ticks += 1

@@ -93,10 +93,10 @@ def main_options(
 def format_input_error(error: InputError) -> str:
     """`file:line:col: message`, then the offending line and a caret under the column."""
     lines = [str(error)]
-    if error.source_line is not None and error.span is not None:
-        text = error.source_line.rstrip("\n").expandtabs(1)
-        lines.append(f"  {text}")
-        lines.append("  " + " " * max(error.span.column - 1, 0) + "^")
+    excerpt = error.excerpt()
+    if excerpt is not None:
+        lines.append(f"  {excerpt[0]}")
+        lines.append("  " + " " * excerpt[1] + "^")
     return "\n".join(lines)
 
 

@@ -7,9 +7,10 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+from rich.markup import escape
 
 from btplan.bt.formats import dump, json_schema, load_tree
-from btplan.cli.app import app, guarded
+from btplan.cli.app import app, guarded, stderr
 from btplan.errors import InputError, Span
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.io import read_text
@@ -60,6 +61,15 @@ def export(
     status: Annotated[bool, typer.Option(
         "--status", help="Keep (json) or colour by (dot, ascii) the statuses saved in TREE.")
                       ] = False,
+    model: Annotated[list[str] | None, typer.Option(
+        "--model", metavar="FILE", help="XML with a TreeNodesModel (e.g. a Groot2 palette) "
+        "declaring custom nodes; repeatable.")] = None,
+    tree_id: Annotated[str | None, typer.Option(
+        "--tree", metavar="ID", help="The BehaviorTree to execute (default: "
+        "main_tree_to_execute, or the only tree).")] = None,
+    strict: Annotated[bool, typer.Option(
+        "--strict", help="Refuse custom nodes that no model declares instead of inferring "
+        "them from their shape.")] = False,
 ) -> None:
     """Convert a saved tree: BT.CPP v4 XML, graphviz DOT, btplan JSON or a text view."""
     out = out_alias if out_alias is not None else out
@@ -72,5 +82,9 @@ def export(
     if tree is None:
         raise InputError("missing TREE: a saved tree file, or '-' for standard input")
     text = read_text(tree)
-    loaded = load_tree(text, input_format(tree, text), tree)
+    models = [(read_text(path), path) for path in model or []]
+    loaded = load_tree(text, input_format(tree, text), tree, models, tree_id, strict)
+    if loaded.imported is not None:
+        for warning in loaded.imported.doc.warnings:
+            stderr.print(f"[yellow]warning:[/] {escape(warning)}")
     write_atomic(out, dump(loaded, fmt.value, with_status=status))

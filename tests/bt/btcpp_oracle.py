@@ -101,3 +101,107 @@ class BtcppRun:
     def tick(self) -> Status:
         with quiet_stdout():
             return Status(self.tree.tick_exactly_once().name)
+
+
+UNREADABLE = "<not readable as text>"
+
+
+def _leaf_ids(root: ET.Element) -> dict[str, str]:
+    """Custom leaf IDs and their kind, from the TreeNodesModel."""
+    models = root.find("TreeNodesModel")
+    return {e.attrib["ID"]: e.tag for e in (models if models is not None else [])
+            if e.tag in ("Action", "Condition")}
+
+
+def document_copy(xml: str) -> tuple[str, dict[str, tuple[str, list[tuple[str, str]]]]]:
+    """The exported document as BT.CPP can load it with port-less Python leaves.
+
+    Custom leaves lose their port attributes (kept aside, to build the key the world
+    sees) and get a unique name; their `_` condition attributes, every built-in node and
+    every SubTree stay as written.
+    """
+    root = ET.fromstring(xml)
+    leaves = _leaf_ids(root)
+    ports: dict[str, tuple[str, list[tuple[str, str]]]] = {}
+    for tree in root.findall("BehaviorTree"):
+        for element in tree.iter():
+            if element.tag not in leaves:
+                continue
+            token = f"leaf{len(ports)}"
+            given = [(k, v) for k, v in element.attrib.items()
+                     if k != "name" and not k.startswith("_")]
+            ports[token] = (element.tag, given)
+            for key, _ in given:
+                del element.attrib[key]
+            element.set("name", token)
+    model = root.find("TreeNodesModel")
+    if model is not None:
+        root.remove(model)
+    return ET.tostring(root, encoding="unicode"), ports
+
+
+class BtcppDocRun:
+    """An imported-and-exported document inside BT.CPP, leaves answering from a world.
+
+    A leaf's `{key}` port is read from the leaf's own blackboard in BT.CPP (SubTree
+    remapping included), as btplan's engine reads it from its own.
+    """
+
+    def __init__(self, xml: str, world: World) -> None:
+        import behaviortreepy as bt
+
+        self.bt, self.world = bt, world
+        text, self.ports = document_copy(xml)
+        factory = bt.BehaviorTreeFactory()
+        running: dict[str, LeafKey] = {}
+
+        def key(node: object) -> LeafKey:
+            ident, given = self.ports[node.name()]  # type: ignore[attr-defined]
+            board = node.config().blackboard  # type: ignore[attr-defined]
+            values = []
+            for port, raw in given:
+                inner = raw[1:-1] if raw.startswith("{") and raw.endswith("}") else None
+                name = port if inner == "=" else inner
+                try:
+                    values.append(board.get_string(name) if name else raw)
+                except Exception:  # noqa: BLE001 -- unset entry: the literal text, as btplan
+                    values.append(raw)
+            return ident, tuple(values)
+
+        def start(node: object) -> object:
+            running[node.name()] = key(node)  # type: ignore[attr-defined]
+            return self._status(world.start(running[node.name()]))  # type: ignore[attr-defined]
+
+        def step(node: object) -> object:
+            return self._status(world.step(running[node.name()]))  # type: ignore[attr-defined]
+
+        def halted(node: object) -> None:
+            world.halt(running[node.name()])  # type: ignore[attr-defined]
+
+        def check(node: object) -> object:
+            return self._status(SUCCESS if world.check(key(node)) else FAILURE)
+
+        for ident, kind in sorted(_leaf_ids(ET.fromstring(xml)).items()):
+            if kind == "Condition":
+                factory.register_simple_condition(ident, check)
+            else:
+                factory.register_simple_stateful_action(ident, start, step, halted)
+        with quiet_stdout():
+            self.tree = factory.create_tree_from_text(text)
+
+    def _status(self, status: Status) -> object:
+        return getattr(self.bt.NodeStatus, status.value)
+
+    def tick(self) -> Status:
+        with quiet_stdout():
+            return Status(self.tree.tick_exactly_once().name)
+
+    def board(self) -> dict[str, str]:
+        board = self.tree.root_blackboard()
+        out: dict[str, str] = {}
+        for key in sorted(board.get_keys()):
+            try:
+                out[key] = board.get_string(key)
+            except RuntimeError:
+                out[key] = UNREADABLE  # never written, or not a text (a queue)
+        return out

@@ -122,21 +122,18 @@ def test_export_refuses_ids_btcpp_would_reject() -> None:
 
 
 @pytest.mark.parametrize(("body", "message", "line"), [
-    ('<BehaviorTree ID="Main">\n  <Pick o="cube"/>\n</BehaviorTree>\n</root>',
-     "unknown node <Pick>", 3),
-    (('<BehaviorTree ID="Main">\n  <Pick/>\n</BehaviorTree>\n<TreeNodesModel>\n'
-     '<Action ID="Pick"><input_port name="o"/></Action></TreeNodesModel>\n</root>'),
-     "missing port 'o'", 3),
     ('<BehaviorTree ID="Main">\n  <Inverter/>\n</BehaviorTree>\n</root>',
      "exactly one child", 3),
+    ('<BehaviorTree ID="Main">\n  <Sequence/>\n</BehaviorTree>\n</root>',
+     "needs at least 1 children, not 0", 3),
     ('<BehaviorTree ID="Other"><ReactiveSequence/></BehaviorTree></root>',
      "no <BehaviorTree ID=\"Main\">", 1),
     ('<BehaviorTree ID="Main">\n  <ReactiveSequence>\n</BehaviorTree></root>',
      "not well-formed XML", 4),
-    (('<BehaviorTree ID="Main">\n<RetryUntilSuccessful num_attempts="-1">\n'
-     '<ReactiveSequence/></RetryUntilSuccessful></BehaviorTree></root>'),
-     "num_attempts=-1 is not supported", 3),
-    (('<BehaviorTree ID="Main">\n<Timeout msec="soon"><ReactiveSequence/></Timeout>\n'
+    (('<BehaviorTree ID="Main">\n<RetryUntilSuccessful num_attempts="0">\n'
+     '<AlwaysSuccess/></RetryUntilSuccessful></BehaviorTree></root>'),
+     "num_attempts=0 is not supported", 3),
+    (('<BehaviorTree ID="Main">\n<Timeout msec="soon"><AlwaysSuccess/></Timeout>\n'
      '</BehaviorTree></root>'), "msec='soon' is not a whole number", 3),
     ('<BehaviorTree ID="Main">\n<ReactiveSequence colour="red"/></BehaviorTree></root>',
      "<ReactiveSequence> has no attribute 'colour'", 3),

@@ -69,3 +69,36 @@ def test_missing_file_and_unknown_format_are_usage_errors(tmp_path: Path) -> Non
     odd.write_text("tree", encoding="utf-8")
     sniff = runner.invoke(app, ["export", "xml", str(odd)])
     assert sniff.exit_code == 2 and "JSON or XML" in sniff.stderr
+
+
+CORPUS = Path(__file__).resolve().parents[1] / "bt" / "corpus"
+
+
+def test_a_real_style_tree_with_a_palette_strict_and_a_chosen_tree() -> None:
+    nav, palette = str(CORPUS / "nav_recovery.xml"), str(CORPUS / "nav_palette.xml")
+    inferred = runner.invoke(app, ["export", "xml", nav])
+    assert inferred.exit_code == 0
+    assert "RecoveryNode is not declared; read as a control from its shape" in inferred.stderr
+    strict = runner.invoke(app, ["export", "dot", nav, "--strict"])
+    assert strict.exit_code == 2 and "unknown node <RecoveryNode>" in strict.stderr
+    declared = runner.invoke(app, ["export", "dot", nav, "--strict", "--model", palette])
+    assert declared.exit_code == 0 and declared.stderr == ""
+    assert 'label="RecoveryNode NavigateRecovery"' in declared.stdout
+    chosen = runner.invoke(app, ["export", "ascii", str(CORPUS / "groot_v3.xml"),
+                                 "--tree", "Dock"])
+    assert chosen.exit_code == 0 and chosen.stdout.startswith("→* Sequence")
+    as_json = runner.invoke(app, ["export", "json", str(CORPUS / "scripts.xml")])
+    assert as_json.exit_code == 2 and "cannot be saved in btplan's JSON format" in as_json.stderr
+
+
+def test_random_bytes_give_a_clean_error_never_a_traceback(tmp_path: Path) -> None:
+    import random
+
+    rng = random.Random(7)
+    for i in range(20):
+        src = tmp_path / f"fuzz{i}.xml"
+        head = b'<root BTCPP_format="4"><BehaviorTree ID="T">' if i % 2 else b""
+        src.write_bytes(head + bytes(rng.randrange(256) for _ in range(rng.randint(0, 300))))
+        result = runner.invoke(app, ["export", "dot", str(src)])
+        assert result.exit_code == 2, (i, result.output)
+        assert "Traceback" not in result.output and "error:" in result.stderr

@@ -6,6 +6,8 @@ lives in its own module and heavy or optional work stays there.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from btplan.bt.formats.btcpp import dump_xml, load_xml
 from btplan.bt.formats.dot import dump_dot
 from btplan.bt.formats.saved import dump_json, json_schema, load_json
@@ -36,12 +38,20 @@ def dump(tree: BehaviorTree, fmt: str, with_status: bool = False) -> str:
     raise InputError(f"unknown tree format {fmt!r}", hint=f"use one of {', '.join(DUMP_FORMATS)}")
 
 
-def load_tree(text: str, fmt: str, path: str = "<tree>") -> BehaviorTree:
-    """Parse a saved tree; bad input raises InputError located in `path`."""
+def load_tree(text: str, fmt: str, path: str = "<tree>",
+              models: Sequence[tuple[str, str]] = (), tree_id: str | None = None,
+              strict: bool = False) -> BehaviorTree:
+    """Parse a saved tree; bad input raises InputError located in `path`.
+
+    `models`, `tree_id` and `strict` apply to BT.CPP XML (see `load_xml`).
+    """
     if fmt == "json":
+        if models or tree_id or strict:
+            raise InputError("--model, --tree and --strict apply to BT.CPP XML trees",
+                             hint="a JSON tree holds one tree and declares its nodes")
         return load_json(text, path)
     if fmt == "xml":
-        return load_xml(text, path)
+        return load_xml(text, path, models, tree_id, strict)
     raise InputError(f"cannot read trees in format {fmt!r}",
                      hint=f"use one of {', '.join(LOAD_FORMATS)}")
 

@@ -11,30 +11,28 @@ TICK_MS milliseconds both ways.
 
 from __future__ import annotations
 
-import math
 import re
-from dataclasses import dataclass, field
-from xml.parsers import expat
+from collections.abc import Mapping
+from collections.abc import Sequence as Seq
 from xml.sax.saxutils import quoteattr
 
 from btplan.bt.composites import Fallback, Sequence
 from btplan.bt.decorators import ForceFailure, ForceSuccess, Inverter, Retry, Timeout
-from btplan.bt.formats.locate import line_at
-from btplan.bt.leaves import Action, Condition, Leaf, leaf_label
+from btplan.bt.formats.btcpp_catalog import BUILTINS
+from btplan.bt.formats.btcpp_files import read_document
+from btplan.bt.formats.btcpp_models import ModelEntry, ModelPort, write_models
+from btplan.bt.formats.btcpp_read import TICK_MS, ImportedTrees, build_tree
+from btplan.bt.leaves import Leaf, leaf_label
 from btplan.bt.node import Node
 from btplan.bt.parallel import Parallel
 from btplan.bt.tree import BehaviorTree
-from btplan.errors import InputError, Span
-
-TICK_MS = 100
-"""Milliseconds per tick when a Timeout crosses to BT.CPP (btplan acts at 10 Hz)."""
+from btplan.errors import InputError
 
 _BAD_ID = re.compile(r"[\s<>&\"'/\\:*?|.]|[\x00-\x1f]")
 _PORT = re.compile(r"[A-Za-z][A-Za-z0-9_]*")
 _RESERVED_PORTS = {"name", "ID", "_autoremap"}
 _RESERVED_IDS = {"Root", "root"}
-_BUILTIN = {"ReactiveSequence", "ReactiveFallback", "Sequence", "Fallback", "Parallel",
-            "Inverter", "ForceSuccess", "ForceFailure", "RetryUntilSuccessful", "Timeout"}
+_BUILTIN = set(BUILTINS)
 
 
 class ExportError(InputError):
@@ -101,7 +99,13 @@ def _write(node: Node, depth: int, out: list[str],
 
 
 def dump_xml(tree: BehaviorTree) -> str:
-    """The tree as a BT.CPP v4 document with its TreeNodesModel."""
+    """The tree as a BT.CPP v4 document with its TreeNodesModel.
+
+    A tree read from XML is written back node for node, with all the trees and the
+    models of its document.
+    """
+    if tree.imported is not None:
+        return _dump_imported(tree, tree.imported)
     if _BAD_ID.search(tree.name) or tree.name in _RESERVED_IDS or not tree.name:
         raise ExportError(f"{tree.name!r} cannot be a BehaviorTree.CPP tree ID")
     models: dict[str, tuple[str, tuple[str, ...]]] = {}
@@ -123,157 +127,67 @@ def dump_xml(tree: BehaviorTree) -> str:
     return "\n".join(out) + "\n"
 
 
+# --- imported documents -------------------------------------------------------------------
+
+
+def _write_imported(node: Node, depth: int, out: list[str],
+                    models: dict[str, tuple[str, tuple[str, ...]]]) -> None:
+    """A node read from XML goes back with its tag and attributes as they were read;
+    a SubTree without the instance below it (the called tree is written on its own)."""
+    origin = node.origin
+    if origin is None:
+        _write(node, depth, out, models)
+        return
+    pad = "  " * depth
+    text = "".join(f" {k}={quoteattr(v)}" for k, v in origin.attrs)
+    children = [] if origin.tag == "SubTree" else node.children
+    if not children:
+        out.append(f"{pad}<{origin.tag}{text}/>")
+        return
+    out.append(f"{pad}<{origin.tag}{text}>")
+    for child in children:
+        _write_imported(child, depth + 1, out, models)
+    out.append(f"{pad}</{origin.tag}>")
+
+
+def _dump_imported(tree: BehaviorTree, imported: ImportedTrees) -> str:
+    doc = imported.doc
+    out = ['<?xml version="1.0" encoding="UTF-8"?>',
+           f'<root BTCPP_format="4" main_tree_to_execute={quoteattr(tree.name)}>']
+    added: dict[str, tuple[str, tuple[str, ...]]] = {}
+    for tree_id, element in doc.trees.items():
+        root = tree.root if tree_id == tree.name else imported.roots[tree_id]
+        attrs = "".join(f" {k}={quoteattr(v)}" for k, v in element.attrs.items())
+        out.append(f"  <BehaviorTree{attrs}>")
+        _write_imported(root, 2, out, added)
+        out.append("  </BehaviorTree>")
+    entries = [e for e in doc.models.values()
+               if e.origin != "model" or e.ident in imported.used]
+    known = {e.ident for e in entries}
+    for ident, (kind, ports) in added.items():
+        if ident not in known:
+            entries.append(ModelEntry(kind, ident, [
+                ModelPort("input", p, (("name", p), ("type", "std::string"))) for p in ports]))
+    out += write_models(entries)
+    out.append("</root>")
+    return "\n".join(out) + "\n"
+
+
 # --- import -------------------------------------------------------------------------------
 
 
-@dataclass
-class _Element:
-    tag: str
-    attrs: dict[str, str]
-    line: int
-    column: int
-    children: list[_Element] = field(default_factory=list)
+def load_xml(text: str, path: str = "<tree>", models: Seq[tuple[str, str]] = (),
+             tree_id: str | None = None, strict: bool = False,
+             enums: Mapping[str, int] | None = None) -> BehaviorTree:
+    """Read a BT.CPP document (version 3 or 4) with its includes.
 
-
-def _parse(text: str, path: str) -> _Element:
-    """A minimal element tree with line and column, via expat (ElementTree keeps none)."""
-    parser = expat.ParserCreate()
-    stack: list[_Element] = [_Element("#document", {}, 1, 1)]
-
-    def start(tag: str, attrs: dict[str, str]) -> None:
-        element = _Element(tag, attrs, parser.CurrentLineNumber, parser.CurrentColumnNumber + 1)
-        stack[-1].children.append(element)
-        stack.append(element)
-
-    def end(tag: str) -> None:
-        stack.pop()
-
-    parser.StartElementHandler = start
-    parser.EndElementHandler = end
-    try:
-        parser.Parse(text, True)
-    except expat.ExpatError as error:
-        line = error.lineno
-        raise InputError(f"not well-formed XML: {expat.ErrorString(error.code)}",
-                         Span(path, line, error.offset + 1), source_line=line_at(text, line)
-                         ) from None
-    return stack[0].children[0]
-
-
-class _Reader:
-    """Turns parsed elements into nodes; every error names the element's place."""
-
-    def __init__(self, text: str, path: str) -> None:
-        self.text, self.path = text, path
-        self.models: dict[str, tuple[str, tuple[str, ...]]] = {}
-
-    def error(self, element: _Element, message: str, hint: str | None = None) -> InputError:
-        return InputError(message, Span(self.path, element.line, element.column), hint,
-                          line_at(self.text, element.line))
-
-    def tree(self, root: _Element) -> BehaviorTree:
-        if root.tag != "root":
-            raise self.error(root, f"expected <root>, found <{root.tag}>")
-        if root.attrs.get("BTCPP_format") != "4":
-            raise self.error(root, "only BehaviorTree.CPP format 4 is read",
-                             'write <root BTCPP_format="4" ...>')
-        trees = {e.attrs.get("ID", ""): e for e in root.children if e.tag == "BehaviorTree"}
-        for element in root.children:
-            if element.tag == "TreeNodesModel":
-                self.read_models(element)
-            elif element.tag != "BehaviorTree":
-                raise self.error(element, f"unexpected <{element.tag}> in <root>")
-        main = root.attrs.get("main_tree_to_execute") or (next(iter(trees)) if len(trees) == 1
-                                                           else "")
-        if main not in trees:
-            raise self.error(root, f"no <BehaviorTree ID=\"{main}\"> to execute",
-                             "set main_tree_to_execute to one of: " + ", ".join(sorted(trees)))
-        element = trees[main]
-        if len(element.children) != 1:
-            raise self.error(element, "a <BehaviorTree> has exactly one child")
-        return BehaviorTree(self.node(element.children[0]), name=main)
-
-    def read_models(self, models: _Element) -> None:
-        for entry in models.children:
-            ident = entry.attrs.get("ID", "")
-            if entry.tag not in ("Action", "Condition") or not ident:
-                continue  # SubTree, Control and Decorator entries describe nothing we build
-            ports = tuple(p.attrs.get("name", "") for p in entry.children
-                          if p.tag == "input_port")
-            self.models[ident] = (entry.tag, ports)
-
-    def node(self, element: _Element) -> Node:
-        tag, attrs = element.tag, dict(element.attrs)
-        if tag in ("Action", "Condition") and "ID" in attrs:
-            tag = attrs.pop("ID")
-        if tag in self.models:
-            return self.leaf(element, tag, attrs)
-        name = attrs.pop("name", "")
-        children = [self.node(c) for c in element.children]
-        node = self.control(element, tag, attrs, children, name)
-        if attrs:
-            raise self.error(element, f"<{tag}> has no attribute {min(attrs)!r}")
-        return node
-
-    def number(self, element: _Element, attrs: dict[str, str], key: str, default: str) -> int:
-        value = attrs.pop(key, default)
-        try:
-            return int(value)
-        except ValueError:
-            raise self.error(element, f"{key}={value!r} is not a whole number") from None
-
-    def control(self, element: _Element, tag: str, attrs: dict[str, str],
-                children: list[Node], name: str) -> Node:
-        composite = {"ReactiveSequence": (Sequence, False), "Sequence": (Sequence, True),
-                     "ReactiveFallback": (Fallback, False), "Fallback": (Fallback, True)}
-        if tag in composite:
-            kind, memory = composite[tag]
-            return kind(children, name=name, memory=memory)
-        if tag == "Parallel":
-            success = self.number(element, attrs, "success_count", "-1")
-            failure = self.number(element, attrs, "failure_count", "1")
-            return Parallel(children, success=success, failure=failure, name=name)
-        decorators = ("Inverter", "ForceSuccess", "ForceFailure", "RetryUntilSuccessful",
-                      "Timeout")
-        if tag not in decorators:
-            raise self.error(element, f"unknown node <{tag}>",
-                             "leaf IDs must be declared in <TreeNodesModel>")
-        if len(children) != 1:
-            raise self.error(element, f"<{tag}> needs exactly one child, not {len(children)}")
-        if tag == "RetryUntilSuccessful":
-            attempts = self.number(element, attrs, "num_attempts", "1")
-            if attempts < 1:
-                raise self.error(element, f"num_attempts={attempts} is not supported",
-                                 "btplan retries a fixed number of times, at least 1")
-            return Retry(children[0], attempts=attempts, name=name)
-        if tag == "Timeout":
-            msec = self.number(element, attrs, "msec", str(TICK_MS))
-            if msec < 1:
-                raise self.error(element, f"msec={msec} leaves no time to run")
-            return Timeout(children[0], ticks=math.ceil(msec / TICK_MS), name=name)
-        plain = {"Inverter": Inverter, "ForceSuccess": ForceSuccess, "ForceFailure": ForceFailure}
-        return plain[tag](children[0], name=name)
-
-    def leaf(self, element: _Element, ident: str, attrs: dict[str, str]) -> Node:
-        kind, ports = self.models[ident]
-        if element.children:
-            raise self.error(element, f"the {kind} {ident} cannot have children")
-        name = attrs.pop("name", "")
-        missing = [p for p in ports if p not in attrs]
-        if missing:
-            raise self.error(element, f"{ident} is missing port {missing[0]!r}",
-                             f"{ident} declares ports: {', '.join(ports)}")
-        args = tuple(attrs.pop(p) for p in ports)
-        if attrs:
-            raise self.error(element, f"{ident} has no port {min(attrs)!r}",
-                             "declare it in <TreeNodesModel> or remove it")
-        leaf_type = Action if kind == "Action" else Condition
-        return leaf_type(ident, args, ports, name=name)
-
-
-def load_xml(text: str, path: str = "<tree>") -> BehaviorTree:
-    """Read a BT.CPP v4 document written by btplan or by hand in the same subset."""
-    return _Reader(text, path).tree(_parse(text, path))
+    `models` are (text, path) pairs of extra TreeNodesModel files; `tree_id` picks the
+    tree to execute; `strict` refuses custom nodes no model declares instead of
+    inferring them; `enums` are the scripting enums BT.CPP would register in C++.
+    Warnings end up in `tree.imported.doc.warnings`.
+    """
+    doc = read_document(text, path, models, tree_id)
+    return build_tree(doc, strict, enums)
 
 
 __all__ = ["TICK_MS", "ExportError", "dump_xml", "load_xml"]

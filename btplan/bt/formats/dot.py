@@ -30,6 +30,15 @@ def node_label(node: Node) -> str:
     """The text a node shows in the paper's notation."""
     if isinstance(node, Leaf):
         return node.name
+    origin = node.origin
+    if origin is not None and not isinstance(node, (Sequence, Fallback)):
+        attrs = dict(origin.attrs)
+        if origin.tag == "SubTree":
+            return f"SubTree {attrs.get('ID', '')}"
+        if origin.tag in ("Script", "ScriptCondition", "Precondition"):
+            code = attrs.get("code", attrs.get("if", ""))
+            return f"{origin.tag}: {code if len(code) <= 40 else code[:37] + '...'}"
+        return origin.tag + (f" {attrs['name']}" if attrs.get("name") else "")
     star = "*" if getattr(node, "memory", False) else ""
     if isinstance(node, Fallback):
         return "?" + star

@@ -28,6 +28,8 @@ VERSION: Literal[1] = 1
 
 NodeType = Literal["Sequence", "Fallback", "Parallel", "Inverter", "ForceSuccess",
                    "ForceFailure", "Retry", "Timeout", "Condition", "Action"]
+NODE_TYPES = ("Sequence", "Fallback", "Parallel", "Inverter", "ForceSuccess", "ForceFailure",
+              "Retry", "Timeout", "Condition", "Action")
 StatusName = Literal["SUCCESS", "FAILURE", "RUNNING"]
 LEAVES = ("Condition", "Action")
 DECORATORS = ("Inverter", "ForceSuccess", "ForceFailure", "Retry", "Timeout")
@@ -82,7 +84,21 @@ class SavedTree(BaseModel):
     root: SavedNode
 
 
+def _representable(node: Node) -> None:
+    """Refuse, with a clear error, what only BT.CPP XML can hold (its other built-ins,
+    custom controls, condition scripts, retrying for ever)."""
+    kind = node.kind
+    if kind not in NODE_TYPES or (node.origin is not None and node.origin.guard is not None):
+        what = node.origin.tag if node.origin is not None else kind
+        raise InputError(f"{what} cannot be saved in btplan's JSON format",
+                         hint="export this tree as xml (or dot, ascii)")
+    if isinstance(node, Retry) and node.attempts < 1:
+        raise InputError("a Retry that tries for ever cannot be saved in btplan's JSON format",
+                         hint="export this tree as xml")
+
+
 def _node_model(node: Node, with_status: bool) -> SavedNode:
+    _representable(node)
     fields: dict[str, Any] = {"type": node.kind}
     if isinstance(node, Leaf):
         fields.update(ident=node.ident, args=node.args, ports=node.ports)

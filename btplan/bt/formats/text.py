@@ -32,7 +32,8 @@ def _line(node: Node, status: Status | None, traced: bool, halted: bool) -> str:
         text = f"({escape(node.name)})"
     else:
         label = node_label(node)
-        text = escape(label if label.startswith(node.kind) else f"{label} {node.kind}")
+        plain = label.startswith(node.kind) or node.origin is not None and label[:1].isalpha()
+        text = escape(label if plain else f"{label} {node.kind}")
         text += f" [italic]{escape(node.name)}[/]" if node.name else ""
     if status in STYLES:
         assert status is not None
