@@ -16,6 +16,7 @@ from rich.console import Console
 from rich.markup import escape
 
 from btplan.errors import BtplanError, InputError, PlanningError
+from btplan.limits import excerpt
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -40,9 +41,9 @@ def format_input_error(error: InputError) -> str:
     """`file:line:col: message`, then the offending line and a caret under the column."""
     lines = [str(error)]
     if error.source_line is not None and error.span is not None:
-        text = error.source_line.rstrip("\n").expandtabs(1)
+        text, column = excerpt(error.source_line, error.span.column)
         lines.append(f"  {text}")
-        lines.append("  " + " " * max(error.span.column - 1, 0) + "^")
+        lines.append("  " + " " * (column - 1) + "^")
     return "\n".join(lines)
 
 

@@ -1,0 +1,171 @@
+"""How much input btplan accepts, and how much of it an error message shows.
+
+Every reader (.bt, PDDL, saved JSON trees, scene TOML, disturbance files and specs)
+checks its input against these limits before parsing, so a hostile or corrupted file
+ends in a located InputError (exit 2) instead of exhausting memory, time or Python's
+recursion limit. The numbers sit far above anything btplan plans with in practice;
+docs/reliability.md lists them with the tests that hold them.
+"""
+
+from __future__ import annotations
+
+import operator
+import re
+from collections.abc import Iterator
+from dataclasses import dataclass
+from itertools import accumulate, repeat, takewhile
+
+from btplan.errors import InputError, Span
+
+MAX_INPUT_BYTES = 8 * 1024 * 1024
+"""Largest input file read, in bytes (8 MiB).
+
+Shipped and generated domains are a few kilobytes; machine-made problems with thousands
+of objects stay well under a megabyte. The bound keeps memory (the parsers hold about a
+hundred bytes per token) and time (lark reads a few MB per second) bounded, and stops a
+device such as /dev/zero or an endless pipe from being read forever.
+"""
+
+MAX_NESTING = 100
+"""Deepest bracket nesting in .bt, PDDL and TOML text.
+
+Real PDDL conditions nest about ten deep, .bt and scenes at most three. Checked with a
+flat scan before parsing, because some parsers (tomllib) and every tree walk recurse,
+and Python's recursion limit (1000 frames) must never be what stops a reader.
+"""
+
+MAX_TREE_DEPTH = 100
+"""Deepest behavior tree read from a file, in nodes from the root to a leaf.
+
+Trees the planner builds for the shipped and generated domains are at most 16 deep.
+Ticking, exporting and saving a tree are recursive (a few frames per level), so a
+bound well under Python's recursion limit keeps every later step safe too.
+"""
+
+MAX_JSON_NESTING = 2 * MAX_TREE_DEPTH + 1
+"""Deepest bracket nesting of a saved JSON tree: an object and a `children` array per
+node, and one more for a leaf's `args`; checked before `json.loads`, which recurses."""
+
+EXCERPT_WIDTH = 100
+"""Characters of the offending line shown around the caret; a one-line file of 30 KB
+would otherwise be echoed whole into the terminal."""
+
+MAX_ECHO = 40
+"""Characters of a name, key or value quoted back in an error message."""
+
+
+def shorten(text: str, width: int = MAX_ECHO) -> str:
+    """`text` cut to `width` characters, marked with '...' when cut, for quoting in a message."""
+    return text if len(text) <= width else text[: max(width - 3, 1)] + "..."
+
+
+def check_size(size: int, path: str) -> None:
+    """Refuse an input of `size` bytes (or characters) above MAX_INPUT_BYTES."""
+    if size > MAX_INPUT_BYTES:
+        raise InputError(
+            f"this input is larger than {MAX_INPUT_BYTES // (1024 * 1024)} MiB, "
+            "the most btplan reads",
+            Span(path, 1, 1),
+            "split it, or check that it is the file you meant",
+        )
+
+
+@dataclass(frozen=True, slots=True)
+class Brackets:
+    """What counts as nesting in one language: its brackets, and the text to skip.
+
+    `skip` matches strings and comments, whose brackets do not count.
+    """
+
+    opening: str
+    closing: str
+    skip: re.Pattern[str] | None = None
+
+
+BT_BRACKETS = Brackets("({", ")}", re.compile(r"#[^\n]*"))
+PDDL_BRACKETS = Brackets("(", ")", re.compile(r";[^\n]*"))
+TOML_BRACKETS = Brackets("[{", "]}", re.compile(
+    r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*'))
+"""TOML arrays and inline tables; strings of all four kinds and comments are skipped."""
+JSON_BRACKETS = Brackets("[{", "]}", re.compile(r'"(?:[^"\\]|\\.)*"'))
+
+
+def check_nesting(text: str, path: str, brackets: Brackets,
+                  limit: int = MAX_NESTING, message: str | None = None) -> None:
+    """Refuse text whose brackets nest deeper than `limit`, at the first one too deep.
+
+    Depth is counted from the start of the text without recursion, in C-speed passes
+    (a few hundred milliseconds for MAX_INPUT_BYTES of brackets). A closing bracket
+    with no opening one is the parser's to report: it fails there, before any depth.
+    """
+    body = brackets.skip.sub("", text) if brackets.skip else text
+    marks = _marks(body, brackets)
+    if max(accumulate(_steps(marks)), default=0) <= limit:
+        return
+    count = len(list(takewhile(limit.__ge__, accumulate(_steps(marks)))))
+    raise located(text, path, _index_of_bracket(text, brackets, count),
+                  message or f"brackets nested more than {limit} levels deep",
+                  "btplan reads no deeper; see 'Hostile input' in docs/reliability.md")
+
+
+def _marks(body: str, brackets: Brackets) -> bytes:
+    """The brackets of `body` alone, in order: 2 for an opening one, 0 for a closing one."""
+    table: dict[int, str | None] = {ord(c): None for c in set(body)}
+    table.update({ord(c): "\x02" for c in brackets.opening})
+    table.update({ord(c): "\x00" for c in brackets.closing})
+    return body.translate(table).encode("latin-1")
+
+
+def _steps(marks: bytes) -> Iterator[int]:
+    """+1 for each opening bracket, -1 for each closing one (C-speed: no Python loop)."""
+    return map(operator.sub, marks, repeat(1))
+
+
+def _index_of_bracket(text: str, brackets: Brackets, count: int) -> int:
+    """Where in `text` the bracket number `count` (from 0, skipped text aside) is."""
+    runs = f"[{re.escape(brackets.opening)}]+|[{re.escape(brackets.closing)}]+"
+    pattern = re.compile(f"{brackets.skip.pattern}|{runs}" if brackets.skip else runs)
+    seen = 0
+    for match in pattern.finditer(text):
+        run = match.group()
+        if run[0] in brackets.opening or run[0] in brackets.closing:
+            if seen + len(run) > count:
+                return match.start() + count - seen
+            seen += len(run)
+    return 0
+
+
+def excerpt(line: str, column: int, width: int = EXCERPT_WIDTH) -> tuple[str, int]:
+    """At most about `width` characters of `line` around `column`, and the caret's new column.
+
+    Characters a terminal would act on (escapes, carriage returns) are shown as '?', and
+    a cut is marked with '...' at either end, so the caret still points at the mistake.
+    """
+    text = "".join(c if c.isprintable() else "?" for c in line.rstrip("\n").expandtabs(1))
+    column = min(max(column, 1), len(text) + 1)
+    if len(text) <= width:
+        return text, column
+    start = max(0, min(column - 1 - width // 2, len(text) - width))
+    shown = text[start:start + width]
+    caret = column - start
+    if start > 0:
+        shown, caret = "..." + shown, caret + 3
+    if start + width < len(text):
+        shown += "..."
+    return shown, caret
+
+
+def located(text: str, path: str, index: int, message: str,
+            hint: str | None = None) -> InputError:
+    """An InputError at character `index` of `text`, with its line for the caret."""
+    line = text.count("\n", 0, index) + 1
+    start = text.rfind("\n", 0, index) + 1
+    end = text.find("\n", index)
+    source = text[start:] if end < 0 else text[start:end]
+    return InputError(message, Span(path, line, index - start + 1), hint, source)
+
+
+__all__ = [
+    "BT_BRACKETS", "JSON_BRACKETS", "PDDL_BRACKETS", "TOML_BRACKETS", "Brackets", "EXCERPT_WIDTH", "MAX_ECHO", "MAX_INPUT_BYTES", "MAX_JSON_NESTING", "MAX_NESTING",
+    "MAX_TREE_DEPTH", "check_nesting", "check_size", "excerpt", "located", "shorten",
+]
