@@ -46,6 +46,18 @@ MAX_JSON_NESTING = 2 * MAX_TREE_DEPTH + 1
 """Deepest bracket nesting of a saved JSON tree: an object and a `children` array per
 node, and one more for a leaf's `args`; checked before `json.loads`, which recurses."""
 
+MAX_TICK = 999_999_999
+"""Largest tick number in a disturbance spec or a scene event: a billion ticks is beyond
+any run, and a bound keeps int() away from numbers of thousands of digits, which it
+refuses with an error of its own."""
+
+MAX_SCENE_MAGNITUDE = 10_000.0
+"""Largest size of a number in a scene (metres, seconds, metres per second).
+
+PyBullet computes in single precision, so far beyond this a position loses whole
+centimetres, and products such as speed × tick duration must stay finite.
+"""
+
 EXCERPT_WIDTH = 100
 """Characters of the offending line shown around the caret; a one-line file of 30 KB
 would otherwise be echoed whole into the terminal."""
@@ -166,6 +178,8 @@ def located(text: str, path: str, index: int, message: str,
 
 
 __all__ = [
-    "BT_BRACKETS", "JSON_BRACKETS", "PDDL_BRACKETS", "TOML_BRACKETS", "Brackets", "EXCERPT_WIDTH", "MAX_ECHO", "MAX_INPUT_BYTES", "MAX_JSON_NESTING", "MAX_NESTING",
-    "MAX_TREE_DEPTH", "check_nesting", "check_size", "excerpt", "located", "shorten",
+    "BT_BRACKETS", "EXCERPT_WIDTH", "JSON_BRACKETS", "MAX_ECHO", "MAX_INPUT_BYTES",
+    "MAX_JSON_NESTING", "MAX_NESTING", "MAX_SCENE_MAGNITUDE", "MAX_TICK", "MAX_TREE_DEPTH",
+    "PDDL_BRACKETS", "TOML_BRACKETS", "Brackets", "check_nesting", "check_size", "excerpt",
+    "located", "shorten",
 ]

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from difflib import get_close_matches
 
 from btplan.errors import InputError, Span
-from btplan.limits import check_size, shorten
+from btplan.limits import MAX_TICK, check_size, shorten
 from btplan.model import Task
 
 KINDS = ("clear", "fail", "help", "set", "undo")
@@ -27,9 +27,6 @@ ACTION_KINDS = frozenset({"undo", "help", "fail"})
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_\-]*")
 _INT = re.compile(r"\d+")
-MAX_TICK_DIGITS = 9
-"""A tick number has at most this many digits: a billion ticks is beyond any run, and
-int() refuses numbers of thousands of digits with an error of its own."""
 _FLOAT = re.compile(r"(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?")
 
 
@@ -210,9 +207,9 @@ def _range(cur: _Cursor) -> tuple[int, int | None]:
 def _tick(cur: _Cursor, what: str) -> int:
     cur.skip_space()
     at = cur.pos
-    digits = cur.match(_INT, what)
-    if len(digits.lstrip("0")) > MAX_TICK_DIGITS:
-        raise cur.fail(f"a tick number has at most {MAX_TICK_DIGITS} digits", at)
+    digits = cur.match(_INT, what).lstrip("0") or "0"
+    if len(digits) > len(str(MAX_TICK)) or int(digits) > MAX_TICK:
+        raise cur.fail(f"a tick number is at most {MAX_TICK}", at)
     return int(digits)
 
 

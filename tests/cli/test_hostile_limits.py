@@ -187,8 +187,9 @@ def test_numbers_past_pythons_digit_limit_are_input_errors(tmp_path: Path, name:
     assert ":1:" in error_lines(result)[0]
 
 
-@pytest.mark.parametrize("value", ["9" * 5000, "nan", "inf", "1e400", "-inf"])
+@pytest.mark.parametrize("value", ["9" * 5000, "nan", "inf", "1e400", "-inf", "1e300"])
 def test_scene_numbers_must_be_finite(tmp_path: Path, value: str) -> None:
+    """1e300 once reached the world, where speed x tick duration overflowed in round()."""
     scene = tmp_path / "scene.toml"
     scene.write_text((DOMAINS / "scenes" / "youbot.toml").read_text(encoding="utf-8").replace(
         "tick_seconds = 0.1", f"tick_seconds = {value}").replace(

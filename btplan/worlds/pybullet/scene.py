@@ -18,7 +18,14 @@ from typing import Any
 
 from btplan.errors import InputError, Span
 from btplan.io import read_text
-from btplan.limits import TOML_BRACKETS, check_nesting, located, shorten
+from btplan.limits import (
+    MAX_SCENE_MAGNITUDE,
+    MAX_TICK,
+    TOML_BRACKETS,
+    check_nesting,
+    located,
+    shorten,
+)
 
 Point = tuple[float, float]
 
@@ -157,9 +164,10 @@ class _Reader:
         return InputError(message, Span(self.path, 1, 1), hint)
 
     def numbers(self, value: object, n: int, key: str) -> tuple[float, ...]:
-        if not (isinstance(value, list) and len(value) == n and all(_finite(v) for v in value)):
+        if not (isinstance(value, list) and len(value) == n and all(
+                _finite(v) and abs(v) <= MAX_SCENE_MAGNITUDE for v in value)):
             raise self.fail(f"'{key}' must be a list of {n} numbers", key,
-                            "numbers must be finite: no nan or inf")
+                            f"finite ones, at most {MAX_SCENE_MAGNITUDE:g} in size")
         return tuple(float(v) for v in value)
 
     def scalar(self, table: dict[str, Any], key: str, default: float, whole: bool = False,
@@ -167,10 +175,11 @@ class _Reader:
         """A number (an integer if `whole`) of at least `least`, or the default when absent."""
         value = table.get(key, default)
         kinds = int if whole else int | float
-        if not (_finite(value) and isinstance(value, kinds) and value >= least):
+        most = MAX_TICK if whole else MAX_SCENE_MAGNITUDE
+        if not (_finite(value) and isinstance(value, kinds) and least <= value <= most):
             what = "a whole number" if whole else "a number"
             raise self.fail(f"'{key}' must be {what} of at least {least:g}", key,
-                            f"got {shorten(repr(value))}")
+                            f"and at most {most:.0f}; got {shorten(repr(value))}")
         return float(value)
 
     def known(self, table: object, kind: str) -> dict[str, Any]:
@@ -214,6 +223,9 @@ class _Reader:
         if "bounds" not in world:
             raise self.fail("the scene needs [world] bounds = [x_min, x_max, y_min, y_max]", "[world]")
         x0, x1, y0, y1 = self.numbers(world["bounds"], 4, "bounds")
+        if x0 >= x1 or y0 >= y1:
+            raise self.fail("'bounds' must be [x_min, x_max, y_min, y_max], each min below "
+                            "its max", "bounds")
         sx, sy, syaw = self.numbers(robot.get("start", [0.0, 0.0, 0.0]), 3, "start")
         cubes = tuple(self.cube(t) for t in self.tables(data, "cube"))
         scene = Scene(
@@ -234,8 +246,11 @@ class _Reader:
         return scene
 
     def wall(self, t: dict[str, Any]) -> Box:
-        return Box(self.name(t, "wall"), self.point(t.get("center"), "center"),
-                   self.point(t.get("size"), "size"), self.scalar(t, "height", 0.4, least=0.01))
+        size = self.point(t.get("size"), "size")
+        if min(size) <= 0:
+            raise self.fail("a wall's 'size' must be positive", "size", f"got {list(size)}")
+        return Box(self.name(t, "wall"), self.point(t.get("center"), "center"), size,
+                   self.scalar(t, "height", 0.4, least=0.01))
 
     def cube(self, t: dict[str, Any]) -> CubeSpec:
         at = self.point(t["at"], "at") if "at" in t else None
