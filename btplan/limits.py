@@ -34,6 +34,14 @@ flat scan before parsing, because some parsers (tomllib) and every tree walk rec
 and Python's recursion limit (1000 frames) must never be what stops a reader.
 """
 
+MAX_TYPE_DEPTH = 100
+"""Longest chain of types from a type up to the root of its hierarchy.
+
+Real hierarchies are a handful of levels deep. Subtype checks walk the chain each time
+they are asked, so a chain of 10,000 types declared in a flat list would make checking
+a domain take hours.
+"""
+
 MAX_TREE_DEPTH = 100
 """Deepest behavior tree read from a file, in nodes from the root to a leaf.
 
@@ -107,7 +115,7 @@ def check_nesting(text: str, path: str, brackets: Brackets,
     """Refuse text whose brackets nest deeper than `limit`, at the first one too deep.
 
     Depth is counted from the start of the text without recursion, in C-speed passes
-    (a few hundred milliseconds for MAX_INPUT_BYTES of brackets). A closing bracket
+    (about a second for MAX_INPUT_BYTES of brackets on a slow machine). A closing bracket
     with no opening one is the parser's to report: it fails there, before any depth.
     """
     body = brackets.skip.sub("", text) if brackets.skip else text
@@ -150,15 +158,14 @@ def _index_of_bracket(text: str, brackets: Brackets, count: int) -> int:
 def excerpt(line: str, column: int, width: int = EXCERPT_WIDTH) -> tuple[str, int]:
     """At most about `width` characters of `line` around `column`, and the caret's new column.
 
-    Characters a terminal would act on (escapes, carriage returns) are shown as '?', and
-    a cut is marked with '...' at either end, so the caret still points at the mistake.
+    A tab is shown as one space and any other character a terminal would act on
+    (escapes, carriage returns) as '?', one for one; a cut is marked with '...' at
+    either end. So the caret still points at the mistake.
     """
-    text = "".join(c if c.isprintable() else "?" for c in line.rstrip("\n").expandtabs(1))
+    text = line.rstrip("\r\n").replace("\t", " ")
     column = min(max(column, 1), len(text) + 1)
-    if len(text) <= width:
-        return text, column
     start = max(0, min(column - 1 - width // 2, len(text) - width))
-    shown = text[start:start + width]
+    shown = "".join(c if c.isprintable() else "?" for c in text[start:start + width])
     caret = column - start
     if start > 0:
         shown, caret = "..." + shown, caret + 3
@@ -180,6 +187,7 @@ def located(text: str, path: str, index: int, message: str,
 __all__ = [
     "BT_BRACKETS", "EXCERPT_WIDTH", "JSON_BRACKETS", "MAX_ECHO", "MAX_INPUT_BYTES",
     "MAX_JSON_NESTING", "MAX_NESTING", "MAX_SCENE_MAGNITUDE", "MAX_TICK", "MAX_TREE_DEPTH",
+    "MAX_TYPE_DEPTH",
     "PDDL_BRACKETS", "TOML_BRACKETS", "Brackets", "check_nesting", "check_size", "excerpt",
     "located", "shorten",
 ]

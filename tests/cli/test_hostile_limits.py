@@ -15,6 +15,7 @@ from btplan.limits import (
     MAX_INPUT_BYTES,
     MAX_NESTING,
     MAX_TREE_DEPTH,
+    MAX_TYPE_DEPTH,
     excerpt,
     shorten,
 )
@@ -221,3 +222,40 @@ def test_xml_entities_are_never_expanded(tmp_path: Path, kind: str) -> None:
     assert_clean(result)
     assert result.exit_code == 2
     assert "Secret" not in result.output
+
+
+@XML_READER
+def test_a_port_declared_twice_in_an_xml_model_is_an_input_error(tmp_path: Path) -> None:
+    """Found by the property tests (long profile): today a KeyError escapes the reader."""
+    text = GOLDEN.joinpath("bt_figure7.xml").read_text(encoding="utf-8")
+    port = '<input_port name="l" type="std::string"/>'
+    tree = tmp_path / "twice.xml"
+    tree.write_text(text.replace(port, port + port, 1), encoding="utf-8")
+    result = invoke(["export", "json", str(tree)])
+    assert_clean(result)
+    assert result.exit_code == 2
+
+
+def type_chain(n: int, language: str) -> str:
+    """A domain whose types form one chain t0 < t1 < ... < t(n-1) < object."""
+    if language == "pddl":
+        types = " ".join(f"t{i} - t{i + 1}" for i in range(n - 1))
+        return (f"(define (domain d) (:requirements :typing) (:types {types})"
+                " (:predicates (p ?x - t0)))")
+    lines = "\n".join(f"t{i} : t{i + 1}" for i in range(n - 1))
+    return f"domain d {{ types {{ {lines}\nt{n - 1} }} predicates {{ p(x: t0) }} }}"
+
+
+@pytest.mark.parametrize("language", ["bt", "pddl"])
+def test_a_type_chain_deeper_than_the_limit_exits_2(tmp_path: Path, language: str) -> None:
+    """A flat list of 2,000 types in one chain once took hours to check (a cubic walk)."""
+    path = tmp_path / f"chain.{language}"
+    path.write_text(type_chain(MAX_TYPE_DEPTH - 1, language), encoding="utf-8")
+    assert invoke(["check", str(path)]).exit_code == 0  # with object, exactly the limit
+    path.write_text(type_chain(MAX_TYPE_DEPTH, language), encoding="utf-8")
+    assert invoke(["check", str(path)]).exit_code == 2
+    path.write_text(type_chain(2000, language), encoding="utf-8")
+    result = invoke(["check", str(path)])
+    assert_clean(result)
+    assert result.exit_code == 2
+    assert f"the type hierarchy is more than {MAX_TYPE_DEPTH} levels deep" in result.stderr
