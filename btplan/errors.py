@@ -7,6 +7,30 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+EXCERPT_WIDTH = 100
+"""Characters of the offending line shown around the caret; a one-line file of 30 KB
+would otherwise be echoed whole into the terminal."""
+
+
+def excerpt(line: str, column: int, width: int = EXCERPT_WIDTH) -> tuple[str, int]:
+    """At most about `width` characters of `line` around `column`, and the caret's new column.
+
+    A tab is shown as one space and any other character a terminal would act on
+    (escapes, carriage returns) as '?', one for one; a cut is marked with '...' at
+    either end. So the caret still points at the mistake.
+    """
+    text = line.rstrip("\r\n").replace("\t", " ")
+    column = min(max(column, 1), len(text) + 1)
+    start = max(0, min(column - 1 - width // 2, len(text) - width))
+    shown = "".join(c if c.isprintable() else "?" for c in text[start:start + width])
+    caret = column - start
+    if start > 0:
+        shown, caret = "..." + shown, caret + 3
+    if start + width < len(text):
+        shown += "..."
+    return shown, caret
+
+
 
 @dataclass(frozen=True, slots=True)
 class Span:
@@ -48,25 +72,12 @@ class InputError(BtplanError):
         where = f"{self.span}: " if self.span else ""
         return f"{where}{self.message}" + (f" ({self.hint})" if self.hint else "")
 
-    def excerpt(self, width: int = 100) -> tuple[str, int] | None:
-        """At most `width` characters of the offending line around the column, and the
-        caret's offset in them; a minified file is one huge line, and printing all of it
-        would bury the message."""
+    def excerpt(self) -> tuple[str, int] | None:
+        """The offending line cut around the column, and the caret's 0-based offset in it."""
         if self.source_line is None or self.span is None:
             return None
-        text = self.source_line.rstrip("\n").expandtabs(1)
-        caret = max(self.span.column - 1, 0)
-        if len(text) <= width:
-            return text, caret
-        start = min(max(caret - width // 2, 0), max(len(text) - width, 0))
-        cut = text[start:start + width]
-        if start > 0:
-            cut, caret = "..." + cut[3:], caret - start
-        else:
-            caret -= start
-        if start + width < len(text):
-            cut = cut[:-3] + "..."
-        return cut, min(caret, len(cut))
+        shown, column = excerpt(self.source_line, self.span.column)
+        return shown, column - 1
 
 
 class PlanningError(BtplanError):

@@ -13,24 +13,32 @@ import tempfile
 from pathlib import Path
 
 from btplan.errors import InputError, Span
+from btplan.limits import MAX_INPUT_BYTES, check_size
 
 STDIO = "-"
 
 
 def read_text(path: str) -> str:
-    """Read a UTF-8 text file, or standard input for `-`, with errors a user can act on."""
+    """Read a UTF-8 text file, or standard input for `-`, with errors a user can act on.
+
+    At most MAX_INPUT_BYTES are read (btplan/limits.py).
+    """
     if path == STDIO:
-        data = sys.stdin.buffer.read()
+        data = sys.stdin.buffer.read(MAX_INPUT_BYTES + 1)
     else:
         p = Path(path)
         if p.is_dir():
             raise InputError("is a directory, not a file", Span(path, 1, 1))
         try:
-            data = p.read_bytes()
+            # One byte past the limit is enough to refuse; a device or a pipe that never
+            # ends (/dev/zero) is read no further.
+            with p.open("rb") as handle:
+                data = handle.read(MAX_INPUT_BYTES + 1)
         except FileNotFoundError:
             raise InputError("no such file", Span(path, 1, 1)) from None
         except OSError as error:
             raise InputError(f"cannot read: {error.strerror}", Span(path, 1, 1)) from None
+    check_size(len(data), path)
     if b"\x00" in data:
         raise InputError("this is a binary file, not text", Span(path, 1, 1))
     try:

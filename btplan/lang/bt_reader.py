@@ -14,6 +14,7 @@ from lark.exceptions import UnexpectedInput, VisitError
 
 from btplan.errors import InputError
 from btplan.lang.diagnostics import syntax_error
+from btplan.limits import BT_BRACKETS, check_nesting, check_size
 from btplan.lang.syntax import (
     ActionSyntax,
     DomainSyntax,
@@ -45,7 +46,13 @@ def bt_parser() -> Lark:
 
 
 def read_bt(text: str, path: str) -> Units:
-    """Parse .bt text into domain and problem syntax, in file order."""
+    """Parse .bt text into domain and problem syntax, in file order.
+
+    Size and nesting are checked first (btplan/limits.py), so that no input, however
+    hostile, reaches the parser's or a tree walk's limits.
+    """
+    check_size(len(text), path)
+    check_nesting(text, path, BT_BRACKETS)
     source = Source(text, path)
     parser = bt_parser()
     try:

@@ -1,7 +1,7 @@
 """Read PDDL text as located s-expressions (grammar: grammar/pddl.lark).
 
 Only lists and tokens are found here; btplan/lang/pddl_reader.py gives them meaning.
-Reading is iterative, so absurdly deep nesting cannot exhaust the stack.
+Reading is iterative, and nesting is bounded before it starts (btplan/limits.py).
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ from lark.exceptions import UnexpectedInput
 
 from btplan.lang.diagnostics import syntax_error
 from btplan.lang.syntax import Source, Where
+from btplan.limits import MAX_NESTING, PDDL_BRACKETS, check_nesting, check_size
 
 WORDS = {
     "NAME": "a name",
@@ -55,7 +56,14 @@ def pddl_parser() -> Lark:
 
 
 def read_items(text: str, path: str) -> list[Item]:
-    """The top-level items of a PDDL text, or a located syntax error."""
+    """The top-level items of a PDDL text, or a located syntax error.
+
+    Size and nesting are checked first (btplan/limits.py): a 10,000-deep `(and (and ...`
+    is refused at the first parenthesis too deep, not read.
+    """
+    check_size(len(text), path)
+    check_nesting(text, path, PDDL_BRACKETS,
+                  message=f"parentheses nested more than {MAX_NESTING} levels deep")
     source = Source(text, path)
     parser = pddl_parser()
     try:

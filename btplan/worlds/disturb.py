@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from difflib import get_close_matches
 
 from btplan.errors import InputError, Span
+from btplan.limits import MAX_TICK, check_size, shorten
 from btplan.model import Task
 
 KINDS = ("clear", "fail", "help", "set", "undo")
@@ -142,7 +143,7 @@ def parse_spec(text: str, origin: Span | None = None, source_line: str | None = 
     kind = cur.match(_NAME, "a disturbance kind (" + ", ".join(KINDS) + ")")
     if kind not in KINDS:
         near = get_close_matches(kind, KINDS, n=1)
-        raise cur.fail(f"unknown disturbance kind '{kind}'", kind_at,
+        raise cur.fail(f"unknown disturbance kind '{shorten(kind)}'", kind_at,
                        f"did you mean '{near[0]}'?" if near else "one of " + ", ".join(KINDS))
     target = _target(cur, kind) if cur.take(":") else None
     if target is None and kind in FACT_KINDS:
@@ -188,7 +189,7 @@ def _when(cur: _Cursor) -> When:
 
 def _range(cur: _Cursor) -> tuple[int, int | None]:
     at = cur.pos
-    first = int(cur.match(_INT, "a tick number, a range such as 3..9, or p=0.1"))
+    first = _tick(cur, "a tick number, a range such as 3..9, or p=0.1")
     if first < 1:
         raise cur.fail("ticks are counted from 1", at)
     if not cur.take(".."):
@@ -197,10 +198,19 @@ def _range(cur: _Cursor) -> tuple[int, int | None]:
     if not cur.text[cur.pos:cur.pos + 1].isdigit():
         return (first, None)
     last_at = cur.pos
-    last = int(cur.match(_INT, "the last tick of the range"))
+    last = _tick(cur, "the last tick of the range")
     if last < first:
         raise cur.fail(f"the range ends at {last}, before it starts at {first}", last_at)
     return (first, last)
+
+
+def _tick(cur: _Cursor, what: str) -> int:
+    cur.skip_space()
+    at = cur.pos
+    digits = cur.match(_INT, what).lstrip("0") or "0"
+    if len(digits) > len(str(MAX_TICK)) or int(digits) > MAX_TICK:
+        raise cur.fail(f"a tick number is at most {MAX_TICK}", at)
+    return int(digits)
 
 
 def _probability(cur: _Cursor) -> float:
@@ -213,6 +223,7 @@ def _probability(cur: _Cursor) -> float:
 
 def parse_scenario(text: str, path: str) -> list[DisturbSpec]:
     """Parse a scenario file: one spec per line; `#` starts a comment; blank lines are skipped."""
+    check_size(len(text), path)
     specs: list[DisturbSpec] = []
     for number, line in enumerate(text.splitlines(), start=1):
         body = line.split("#", 1)[0]
@@ -243,22 +254,23 @@ def _check_target(spec: DisturbSpec, target: Target, task: Task) -> None:
         what = "predicate"
     if target.name not in table:
         near = get_close_matches(target.name, sorted(table), n=1)
-        raise _spec_error(spec, f"unknown {what} '{target.name}'",
+        raise _spec_error(spec, f"unknown {what} '{shorten(target.name)}'",
                           f"did you mean '{near[0]}'?" if near else None)
     if target.args is None:
         return
     arity = table[target.name]
     if len(target.args) != arity:
-        raise _spec_error(spec, f"{target.name} takes {arity} argument{'s' * (arity != 1)}, "
+        raise _spec_error(spec, f"{shorten(target.name)} takes {arity} "
+                          f"argument{'s' * (arity != 1)}, "
                           f"not {len(target.args)}")
     objects = sorted(task.object_types)
     for arg in target.args:
         if arg not in task.object_types:
             near = get_close_matches(arg, objects, n=1)
-            raise _spec_error(spec, f"unknown object '{arg}'",
+            raise _spec_error(spec, f"unknown object '{shorten(arg)}'",
                               f"did you mean '{near[0]}'?" if near else None)
 
 
 def _spec_error(spec: DisturbSpec, message: str, hint: str | None = None) -> InputError:
-    return InputError(f"in disturbance '{spec.text}': {message}", spec.span, hint,
+    return InputError(f"in disturbance '{shorten(spec.text)}': {message}", spec.span, hint,
                       spec.source_line)

@@ -8,7 +8,7 @@ import pytest
 
 from btplan.bt.formats import load_tree
 from btplan.bt.formats.xmlparse import MAX_DEPTH, parse_xml
-from btplan.errors import InputError
+from btplan.errors import EXCERPT_WIDTH, InputError
 
 LAUGHS = ('<?xml version="1.0"?>\n<!DOCTYPE lolz [<!ENTITY lol "lol">'
           '<!ENTITY lol2 "&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;">]>\n'
@@ -45,7 +45,7 @@ def test_a_long_line_is_shown_as_a_short_window_around_the_caret() -> None:
     excerpt = info.value.excerpt()
     assert excerpt is not None
     shown, caret = excerpt
-    assert len(shown) <= 100 and shown[caret - 2:caret + 2] == "</c>"
+    assert len(shown) <= EXCERPT_WIDTH + 6 and shown[caret - 2:caret + 2] == "</c>"
 
 
 @pytest.mark.parametrize("seed", range(30))

@@ -9,6 +9,7 @@ import pytest
 from btplan.errors import InputError
 from btplan.lang import load
 from btplan.lang.pddl_reader import read_pddl
+from btplan.limits import MAX_NESTING
 
 PICK_PLACE = Path(__file__).resolve().parents[2] / "domains" / "pick_place.bt"
 
@@ -77,22 +78,32 @@ def test_five_megabytes_of_garbage(tmp_path: Path) -> None:
 
 
 def test_deeply_nested_parentheses_in_bt(tmp_path: Path) -> None:
+    """Refused at the first bracket past the limit, before the parser sees it."""
     deep = tmp_path / "deep.bt"
     deep.write_text("domain d { predicates { p(" + "(" * 20000 + ")" * 20000 + ") } }")
     error = load_error(deep)
-    assert error.message == "unexpected '('; expected ')' or a name"
-    assert error.span is not None and error.span.column == 27
+    assert error.message == f"brackets nested more than {MAX_NESTING} levels deep"
+    assert error.span is not None and error.span.column == 27 + MAX_NESTING - 3
 
 
 def test_deeply_nested_conjunctions_in_pddl() -> None:
-    """A legal but absurd depth: read without recursion, into one flat precondition."""
+    """Legal PDDL of absurd depth: refused at the first parenthesis too deep, not read."""
     depth = 20000
+    prefix = "(define (domain d) (:predicates (p)) (:action a :parameters () :precondition "
+    text = prefix + "(and " * depth + "(p)" + ")" * depth + " :effect (not (p))))"
+    with pytest.raises(InputError) as caught:
+        read_pddl(text, "deep.pddl")
+    assert caught.value.message == f"parentheses nested more than {MAX_NESTING} levels deep"
+    assert caught.value.span is not None
+    assert caught.value.span.column == len(prefix) + 1 + 5 * (MAX_NESTING - 2)
+
+
+def test_a_hundred_nested_conjunctions_are_still_read() -> None:
+    """Just within the limit, the reader flattens the conjunctions without recursion."""
+    depth = MAX_NESTING - 3  # define, action and precondition hold three levels
     text = (
         "(define (domain d) (:predicates (p)) (:action a :parameters () :precondition "
-        + "(and " * depth
-        + "(p)"
-        + ")" * depth
-        + " :effect (not (p))))"
+        + "(and " * (depth - 1) + "(p)" + ")" * (depth - 1) + " :effect (not (p))))"
     )
     (domain,) = read_pddl(text, "deep.pddl")
     assert len(domain.actions[0].pre) == 1  # type: ignore[union-attr]
@@ -102,4 +113,5 @@ def test_deeply_nested_bare_parentheses_in_pddl(tmp_path: Path) -> None:
     deep = tmp_path / "deep.pddl"
     deep.write_text("(" * 20000 + ")" * 20000)
     error = load_error(deep)
-    assert error.message == "expected 'define'"
+    assert error.message == f"parentheses nested more than {MAX_NESTING} levels deep"
+    assert error.span is not None and error.span.column == MAX_NESTING + 1

@@ -9,6 +9,8 @@ Fields that hold their default are left out of the JSON to keep files readable.
 from __future__ import annotations
 
 import json
+import re
+import sys
 from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
@@ -22,6 +24,15 @@ from btplan.bt.parallel import Parallel
 from btplan.bt.status import IDLE, Status
 from btplan.bt.tree import BehaviorTree
 from btplan.errors import InputError, Span
+from btplan.limits import (
+    JSON_BRACKETS,
+    MAX_JSON_NESTING,
+    MAX_TREE_DEPTH,
+    check_nesting,
+    check_size,
+    located,
+    shorten,
+)
 
 FORMAT: Literal["btplan-tree"] = "btplan-tree"
 VERSION: Literal[1] = 1
@@ -181,19 +192,30 @@ def json_schema() -> str:
 
 
 def load_json(text: str, path: str = "<tree>") -> BehaviorTree:
-    """Parse a saved tree; every problem becomes an InputError at the offending value."""
+    """Parse a saved tree; every problem becomes an InputError at the offending value.
+
+    Size and nesting are checked before `json.loads`, which recurses: a tree deeper than
+    MAX_TREE_DEPTH nodes is refused where it gets too deep (btplan/limits.py).
+    """
+    check_size(len(text), path)
+    check_nesting(text, path, JSON_BRACKETS, MAX_JSON_NESTING,
+                  f"the tree is nested more than {MAX_TREE_DEPTH} nodes deep")
     try:
         data = json.loads(text)
     except json.JSONDecodeError as error:
         raise InputError(f"not valid JSON: {error.msg}", Span(path, error.lineno, error.colno),
                          source_line=line_at(text, error.lineno)) from None
+    except ValueError as error:  # an integer past Python's digit limit for int()
+        digits = re.search(r"\d{%d,}" % (sys.get_int_max_str_digits() + 1), text)
+        raise located(text, path, digits.start() if digits else 0,
+                      "not valid JSON: a number with too many digits") from None
     try:
         saved = SavedTree.model_validate(data)
     except ValidationError as error:
         first = error.errors()[0]
         where = [step for step in first["loc"] if isinstance(step, (str, int))]
         line, column = locate(text, where)
-        dotted = ".".join(str(s) for s in where) or "tree"
+        dotted = ".".join(shorten(str(s)) for s in where) or "tree"
         message = first["msg"].removeprefix("Value error, ")
         raise InputError(f"{dotted}: {message}", Span(path, line, column),
                          hint=_hint(error), source_line=line_at(text, line)) from None

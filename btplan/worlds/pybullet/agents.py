@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from btplan.errors import InputError, Span
+from btplan.limits import shorten
 from btplan.worlds.agents import Disturbance
 from btplan.worlds.pybullet.scene import Event
 
@@ -29,7 +30,7 @@ def parse_literal(text: str, where: Span | None) -> tuple[bool, str, tuple[str, 
     body = body.removeprefix("not ").strip()
     name, _, rest = body.partition("(")
     if not name.isidentifier() or (rest and not rest.endswith(")")):
-        raise InputError(f"cannot read the condition {text!r}", where,
+        raise InputError(f"cannot read the condition {shorten(repr(text))}", where,
                          "write it as in the domain, e.g. holding(green) or not near(goal)")
     args = tuple(a.strip() for a in rest[:-1].split(",") if a.strip()) if rest else ()
     return positive, name, args
@@ -100,17 +101,18 @@ def scene_agents(events: tuple[Event, ...], path: str,
                 known = sorted(predicates)
                 near = get_close_matches(name, known, n=1)
                 hint = f"did you mean '{near[0]}'?" if near and near[0] != name else (
-                    f"{name} takes {predicates[name]} arguments" if name in predicates else None)
-                raise InputError(f"event '{event.name}': {event.when!r} is not a condition of "
-                                 "the domain", where, hint, source)
+                    f"{shorten(name)} takes {predicates[name]} arguments"
+                    if name in predicates else None)
+                raise InputError(f"event '{shorten(event.name)}': {shorten(repr(event.when))} "
+                                 "is not a condition of the domain", where, hint, source)
         scripted.append(ScriptedEvent(event, literal))
     return SceneAgents(scripted)
 
 
 def _lines(path: str) -> list[str]:
     try:
-        return Path(path).read_text(encoding="utf-8").splitlines()
-    except OSError:
+        return Path(path).read_text(encoding="utf-8").split("\n")
+    except (OSError, ValueError):
         return []
 
 

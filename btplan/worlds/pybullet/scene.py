@@ -7,7 +7,9 @@ found, and what was expected, never as a KeyError from deep inside the world.
 
 from __future__ import annotations
 
+import math
 import re
+import sys
 import tomllib
 from dataclasses import dataclass
 from difflib import get_close_matches
@@ -15,6 +17,15 @@ from pathlib import Path
 from typing import Any
 
 from btplan.errors import InputError, Span
+from btplan.io import read_text
+from btplan.limits import (
+    MAX_SCENE_MAGNITUDE,
+    MAX_TICK,
+    TOML_BRACKETS,
+    check_nesting,
+    located,
+    shorten,
+)
 
 Point = tuple[float, float]
 
@@ -114,21 +125,27 @@ _LITERAL = re.compile(r"^\s*(not\s+)?[A-Za-z_]\w*\s*(\(\s*(\w+\s*(,\s*\w+\s*)*)?
 
 
 def load_scene(path: str | Path) -> Scene:
-    """Read and check a scene file; raises InputError with the place to fix."""
+    """Read and check a scene file; raises InputError with the place to fix.
+
+    Size and nesting are checked before tomllib, which recurses into nested arrays and
+    tables (btplan/limits.py).
+    """
     where = str(path)
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except OSError as error:
-        raise InputError(f"cannot read scene: {error.strerror}", Span(where, 1, 1)) from None
+    text = read_text(where)
+    check_nesting(text, where, TOML_BRACKETS)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         found = _TOML_AT.search(str(error))
         line, col = (int(found.group(1)), int(found.group(2))) if found else (1, 1)
-        lines = text.splitlines()
+        lines = text.split("\n")  # tomllib counts lines as "\n" does
         source = lines[line - 1] if 0 < line <= len(lines) else None
         message = _TOML_AT.sub("", str(error)).strip()
         raise InputError(f"bad TOML: {message}", Span(where, line, col), source_line=source) from None
+    except ValueError:  # an integer past Python's digit limit for int()
+        digits = re.search(r"\d{%d,}" % (sys.get_int_max_str_digits() + 1), text)
+        raise located(text, where, digits.start() if digits else 0,
+                      "bad TOML: a number with too many digits") from None
     return _Reader(where, text).scene(data)
 
 
@@ -137,7 +154,7 @@ class _Reader:
 
     def __init__(self, path: str, text: str) -> None:
         self.path = path
-        self.lines = text.splitlines()
+        self.lines = text.split("\n")
 
     def fail(self, message: str, key: str, hint: str | None = None) -> InputError:
         for number, line in enumerate(self.lines, 1):
@@ -148,8 +165,9 @@ class _Reader:
 
     def numbers(self, value: object, n: int, key: str) -> tuple[float, ...]:
         if not (isinstance(value, list) and len(value) == n and all(
-                isinstance(v, int | float) and not isinstance(v, bool) for v in value)):
-            raise self.fail(f"'{key}' must be a list of {n} numbers", key)
+                _finite(v) and abs(v) <= MAX_SCENE_MAGNITUDE for v in value)):
+            raise self.fail(f"'{key}' must be a list of {n} numbers", key,
+                            f"finite ones, at most {MAX_SCENE_MAGNITUDE:g} in size")
         return tuple(float(v) for v in value)
 
     def scalar(self, table: dict[str, Any], key: str, default: float, whole: bool = False,
@@ -157,9 +175,11 @@ class _Reader:
         """A number (an integer if `whole`) of at least `least`, or the default when absent."""
         value = table.get(key, default)
         kinds = int if whole else int | float
-        if isinstance(value, bool) or not isinstance(value, kinds) or value < least:
+        most = MAX_TICK if whole else MAX_SCENE_MAGNITUDE
+        if not (_finite(value) and isinstance(value, kinds) and least <= value <= most):
             what = "a whole number" if whole else "a number"
-            raise self.fail(f"'{key}' must be {what} of at least {least:g}", key, f"got {value!r}")
+            raise self.fail(f"'{key}' must be {what} of at least {least:g}", key,
+                            f"and at most {most:.0f}; got {shorten(repr(value))}")
         return float(value)
 
     def known(self, table: object, kind: str) -> dict[str, Any]:
@@ -171,7 +191,7 @@ class _Reader:
             if key not in allowed:
                 near = get_close_matches(key, allowed, n=1)
                 where = f"[{kind}]" if kind else "the scene"
-                raise self.fail(f"unknown key '{key}' in {where}", key,
+                raise self.fail(f"unknown key '{shorten(key)}' in {where}", key,
                                 f"did you mean '{near[0]}'?" if near else
                                 f"expected one of {', '.join(allowed)}")
         return table
@@ -203,6 +223,9 @@ class _Reader:
         if "bounds" not in world:
             raise self.fail("the scene needs [world] bounds = [x_min, x_max, y_min, y_max]", "[world]")
         x0, x1, y0, y1 = self.numbers(world["bounds"], 4, "bounds")
+        if x0 >= x1 or y0 >= y1:
+            raise self.fail("'bounds' must be [x_min, x_max, y_min, y_max], each min below "
+                            "its max", "bounds")
         sx, sy, syaw = self.numbers(robot.get("start", [0.0, 0.0, 0.0]), 3, "start")
         cubes = tuple(self.cube(t) for t in self.tables(data, "cube"))
         scene = Scene(
@@ -223,8 +246,11 @@ class _Reader:
         return scene
 
     def wall(self, t: dict[str, Any]) -> Box:
-        return Box(self.name(t, "wall"), self.point(t.get("center"), "center"),
-                   self.point(t.get("size"), "size"), self.scalar(t, "height", 0.4, least=0.01))
+        size = self.point(t.get("size"), "size")
+        if min(size) <= 0:
+            raise self.fail("a wall's 'size' must be positive", "size", f"got {list(size)}")
+        return Box(self.name(t, "wall"), self.point(t.get("center"), "center"), size,
+                   self.scalar(t, "height", 0.4, least=0.01))
 
     def cube(self, t: dict[str, Any]) -> CubeSpec:
         at = self.point(t["at"], "at") if "at" in t else None
@@ -233,28 +259,30 @@ class _Reader:
     def region(self, t: dict[str, Any]) -> Region:
         low, high = self.point(t.get("min"), "min"), self.point(t.get("max"), "max")
         if low[0] >= high[0] or low[1] >= high[1]:
-            raise self.fail(f"region '{t.get('name')}': min must be below max", "min")
+            raise self.fail(f"region '{shorten(str(t.get('name')))}': min must be below max", "min")
         return Region(self.name(t, "region"), low, high, bool(t.get("aside", False)), self.color(t))
 
     def event(self, t: dict[str, Any], cubes: set[str]) -> Event:
         name = self.name(t, "event")
+        shown = shorten(name)
         do = t.get("do")
         if do not in DO:
-            raise self.fail(f"event '{name}': 'do' must be one of {', '.join(DO)}", "do",
-                            f"got {do!r}")
+            raise self.fail(f"event '{shown}': 'do' must be one of {', '.join(DO)}", "do",
+                            f"got {shorten(repr(do))}")
         cube = t.get("cube")
         if cube not in cubes:
-            raise self.fail(f"event '{name}': unknown cube {cube!r}", f'"{cube}"',
-                            f"cubes are {', '.join(sorted(cubes))}")
+            raise self.fail(f"event '{shown}': unknown cube {shorten(repr(cube))}", f'"{cube}"',
+                            f"cubes are {shorten(', '.join(sorted(cubes)), 200)}")
         if ("tick" in t) == ("when" in t):
-            raise self.fail(f"event '{name}': give exactly one of 'tick' or 'when'", name)
+            raise self.fail(f"event '{shown}': give exactly one of 'tick' or 'when'", name)
         when = t.get("when")
         if when is not None and not (isinstance(when, str) and _LITERAL.match(when)):
-            raise self.fail(f"event '{name}': cannot read the condition {when!r}", str(when),
+            raise self.fail(f"event '{shown}': cannot read the condition {shorten(repr(when))}",
+                            str(when),
                             "write it as in the domain, e.g. holding(green) or not near(goal)")
         to = self.point(t["to"], "to") if "to" in t else None
         if do == "move" and to is None:
-            raise self.fail(f"event '{name}': a move needs 'to = [x, y]'", name)
+            raise self.fail(f"event '{shown}': a move needs 'to = [x, y]'", name)
         tick = int(self.scalar(t, "tick", 0, whole=True)) if "tick" in t else None
         count = int(self.scalar(t, "count", 1, whole=True, least=1))
         delay = int(self.scalar(t, "delay", 0, whole=True))
@@ -264,5 +292,15 @@ class _Reader:
         seen: set[str] = set()
         for name in [c.name for c in scene.cubes] + [r.name for r in scene.regions]:
             if name in seen:
-                raise self.fail(f"the name '{name}' is used twice", f'"{name}"')
+                raise self.fail(f"the name '{shorten(name)}' is used twice", f'"{name}"')
             seen.add(name)
+
+
+def _finite(value: object) -> bool:
+    """A TOML number that is a usable float: not a bool, nan, inf, or an integer past float."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return False
+    try:
+        return math.isfinite(value)
+    except OverflowError:
+        return False
