@@ -23,6 +23,7 @@ class SequenceWithMemory(Sequence):
     it yields (RUNNING) until the next tick, as BT.CPP 4.8 does. RUNNING: return it;
     the next tick resumes this child. FAILURE: return it, halting the children from it
     on, and keep the index, so the next tick starts again at the child that failed.
+    Halting it does not rewind it either.
     """
 
     __slots__ = ()
@@ -55,10 +56,8 @@ class SequenceWithMemory(Sequence):
         return SKIPPED if skipped else SUCCESS
 
     def halt(self, world: World) -> None:
-        """Only a RUNNING node rewinds: halting one that failed is BT.CPP's resetStatus,
-        which keeps the index of the child that failed."""
-        if self.status is RUNNING:
-            self._current = 0
+        """Halting does not rewind, as in BT.CPP 4: the next tick resumes at the child
+        that was running or that failed."""
         Composite.halt(self, world)
 
 
