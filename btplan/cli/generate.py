@@ -10,7 +10,7 @@ import typer
 from btplan.cli.app import app, guarded
 from btplan.errors import InputError
 from btplan.io import STDIO, write_atomic
-from btplan.lang.generators import blocksworld, gripper, logistics, render
+from btplan.lang.generators import assembly, blocksworld, gripper, logistics, render
 from btplan.model import Domain, Problem
 
 generate_app = typer.Typer(
@@ -105,3 +105,17 @@ def generate_logistics(
         airplanes=_size(airplanes, "--airplanes"),
     )
     emit(pair, fmt, domain_only, problem_only, out)
+
+
+@generate_app.command("assembly")
+@guarded
+def generate_assembly(
+    parts: Annotated[int, typer.Option("--parts", help="Number of parts.")] = 6,
+    seed: Seed = 0,
+    fmt: Fmt = Format.pddl,
+    domain_only: DomainOnly = False,
+    problem_only: ProblemOnly = False,
+    out: Out = STDIO,
+) -> None:
+    """Two arms mount parts in order; parts lying opening down need a handover."""
+    emit(assembly(_size(parts, "--parts"), seed), fmt, domain_only, problem_only, out)
