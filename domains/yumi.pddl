@@ -1,6 +1,6 @@
-; The paper's ABB Yumi scenario in PDDL: the twin of domains/yumi.bt (same domain, same
-; default problem; the .bt file explains the model). Plan it with:
-;   btplan plan domains/yumi.pddl domains/yumi.pddl
+; The paper's ABB Yumi scenario in PDDL: the twin of domains/yumi.bt (same domain but for
+; the actions' durations, same default problem; the .bt file explains the model). Plan it with:
+;   btplan plan domains/yumi.pddl
 ; A part must be held with its opening away from the gripper to be inserted; picking
 ; fixes the grasp (opening up -> away, down -> toward), and only a handover turns it.
 

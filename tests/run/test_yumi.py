@@ -102,6 +102,20 @@ def test_a_chassis_turned_over_in_the_fixture_is_oriented_again_without_expandin
     assert handed_over(executed(result)) == ["chassis", "chassis"]
 
 
+def test_a_chassis_turned_in_the_gripper_is_handed_back_without_expanding() -> None:
+    """The right gripper holds it opening toward: the left Insert's branch has the handover."""
+    calm = run(YUMI)
+    done = "Handover(chassis, left, right, toward, away)"
+    at = next(r.tick for r in calm.records if done in r.finished) + 1
+    turn = [f"clear:holds(right, chassis, away)@{at}", f"set:holds(right, chassis, toward)@{at}"]
+    result = run(YUMI, disturb=turn)
+    assert assembled(result)
+    assert [e.condition for _, e in result.summary().expansions] == [
+        e.condition for _, e in calm.summary().expansions]
+    assert executed(result)[2:4] == ["Handover(chassis, right, left, toward, away)",
+                                     "Insert(chassis, left, base, base)"]
+
+
 def knock(part: str, to: str, at: int) -> list[str]:
     return [f"clear:lies({part}, right_side, up)@{at}", f"set:lies({part}, {to}, up)@{at}"]
 
