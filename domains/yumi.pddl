@@ -16,7 +16,8 @@
     (reaches ?a - arm ?s - place)
     (grasp_of ?f - face ?g - grasp)
     (turned ?g ?h - grasp)
-    (needs ?p - part ?q ?r - item))
+    (needs ?p - part ?q ?r - item)
+    (mounts ?a - arm))
 
   (:action Pick
     :parameters (?p - part ?a - arm ?s - place ?f - face ?g - grasp)
@@ -35,7 +36,7 @@
 
   (:action Insert
     :parameters (?p - part ?a - arm ?q ?r - item)
-    :precondition (and (needs ?p ?q ?r) (mounted ?q) (mounted ?r) (holds ?a ?p away))
+    :precondition (and (needs ?p ?q ?r) (mounts ?a) (mounted ?q) (mounted ?r) (holds ?a ?p away))
     :effect (and (mounted ?p) (free ?a) (not (holds ?a ?p away)))))
 
 (define (problem phone)
@@ -53,6 +54,8 @@
     (turned away toward)
     (turned toward away)
     (mounted base)
+    (mounts left)
+    (mounts right)
     (needs chassis base base)
     (needs board chassis chassis)
     (needs battery board board)

@@ -75,6 +75,7 @@ ASSEMBLY = Domain(
         Predicate(name="grasp_of", parameters=_params("f: face, g: grasp")),
         Predicate(name="turned", parameters=_params("g: grasp, h: grasp")),
         Predicate(name="needs", parameters=_params("p: part, q: item, r: item")),
+        Predicate(name="mounts", parameters=_params("a: arm")),
     ),
     actions=(
         _action("pick", "p: part, a: arm, s: place, f: face, g: grasp",
@@ -87,7 +88,7 @@ ASSEMBLY = Domain(
                 "turned(g, h); holds(giver, p, g); free(taker)",
                 "holds(taker, p, h); free(giver); not holds(giver, p, g); not free(taker)"),
         _action("insert", "p: part, a: arm, q: item, r: item",
-                "needs(p, q, r); mounted(q); mounted(r); holds(a, p, away)",
+                "needs(p, q, r); mounts(a); mounted(q); mounted(r); holds(a, p, away)",
                 "mounted(p); free(a); not holds(a, p, away)"),
     ),
 )
@@ -111,6 +112,7 @@ def assembly(parts: int, seed: int = 0) -> tuple[Domain, Problem]:
     init += _lits("grasp_of(up, away); grasp_of(down, toward)")
     init += _lits("turned(away, toward); turned(toward, away)")
     init.append(_lit(f"mounted({BASE})"))
+    init += [_lit(f"mounts({a})") for a in ARMS]
     for i, part in enumerate(order):
         earlier = rng.sample(order[:i], min(i, rng.choice((1, 2)))) if i else [BASE]
         q, r = sorted(earlier)[0], sorted(earlier)[-1]

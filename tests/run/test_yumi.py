@@ -77,6 +77,28 @@ def test_two_parts_lying_opening_down_are_each_handed_over_once() -> None:
     assert len(actions) == 2 * len(PARTS) + 2
 
 
+def test_with_one_arm_at_the_fixture_parts_are_regrasped_through_the_middle() -> None:
+    """Only the right arm mounts: the left arm's parts are put down in the middle for it."""
+    task = posed(YUMI, battery=("right_side", "down"))
+    init = tuple(f for f in task.problem.init if str(f) != "mounts(left)")
+    task = Task(domain=task.domain, problem=task.problem.model_copy(update={"init": init}))
+    result = run(task)
+    assert assembled(result)
+    actions = executed(result)
+    assert not any(a.startswith("Insert(") and ", left," in a for a in actions)
+    start = actions.index("Pick(battery, right, right_side, down, toward)")
+    assert actions[start:start + 5] == [
+        "Pick(battery, right, right_side, down, toward)",
+        "Place(battery, right, middle, down, toward)",
+        "Pick(battery, left, middle, down, toward)",
+        "Handover(battery, left, right, toward, away)",
+        "Insert(battery, right, board, board)"]
+    start = actions.index("Pick(cover, left, left_side, up, away)")
+    assert actions[start:start + 4] == [
+        "Pick(cover, left, left_side, up, away)", "Place(cover, left, middle, up, away)",
+        "Pick(cover, right, middle, up, away)", "Insert(cover, right, battery, camera)"]
+
+
 def test_the_pddl_twin_gives_the_same_plan() -> None:
     twin = load(str(DOMAINS / "yumi.pddl"))
     ours, theirs = plan(YUMI), plan(twin)
