@@ -12,7 +12,7 @@ from btplan.cli.app import app, guarded, stderr
 from btplan.cli.interrupts import Interrupts
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.errors import InputError
-from btplan.lang.generators import blocksworld, gripper, logistics, render
+from btplan.lang.generators import assembly, blocksworld, gripper, logistics, render
 from btplan.model import Domain, Problem
 
 generate_app = typer.Typer(
@@ -118,3 +118,17 @@ def generate_logistics(
     emit(lambda: logistics(sizes[0], seed, cities=sizes[1], locations=sizes[2],
                            airplanes=sizes[3]),
          fmt, domain_only, problem_only, out)
+
+
+@generate_app.command("assembly", epilog="Example:\n\n  btplan generate assembly --parts 8 --seed 2 --format bt | btplan plan -\n")
+@guarded
+def generate_assembly(
+    parts: Annotated[int, typer.Option("--parts", metavar="N", help="Number of parts.")] = 6,
+    seed: Seed = 0,
+    fmt: Fmt = Format.pddl,
+    domain_only: DomainOnly = False,
+    problem_only: ProblemOnly = False,
+    out: Out = STDIO,
+) -> None:
+    """Two arms mount parts in order; parts lying opening down need a handover."""
+    emit(lambda: assembly(_size(parts, "--parts"), seed), fmt, domain_only, problem_only, out)

@@ -1,4 +1,4 @@
-"""Generate classic planning problems of any size: blocksworld, gripper, logistics.
+"""Generate planning problems of any size: blocksworld, gripper, logistics, assembly.
 
 They give tests and benchmarks problems of growing size with known structure. Each
 generator builds models from an explicit seed, so the same arguments always give the
@@ -312,7 +312,15 @@ def logistics(
     return LOGISTICS, problem
 
 
+def assembly(parts: int, seed: int = 0) -> tuple[Domain, Problem]:
+    """k-part assemblies for two arms (btplan.lang.assembly, which uses nothing here)."""
+    from btplan.lang.assembly import assembly as generate_assembly
+
+    return generate_assembly(parts, seed)
+
+
 GENERATORS: dict[str, Callable[..., tuple[Domain, Problem]]] = {
+    "assembly": assembly,
     "blocksworld": blocksworld,
     "gripper": gripper,
     "logistics": logistics,

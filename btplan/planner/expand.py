@@ -98,8 +98,12 @@ def atomic_bt(condition: Node, achievers: Sequence[GroundAction], task: Task) ->
 
 
 def achiever_sequence(action: GroundAction, task: Task) -> SequenceNode:
-    """Sequence(pre(A)..., A): one alternative of an atomic BT."""
-    steps = [condition_node(p, task) for p in action.preconditions]
+    """Sequence(pre(A)..., A): one alternative of an atomic BT.
+
+    A precondition written twice (`mounted(q), mounted(r)` bound with q = r) is checked
+    once: a second copy would only be ticked, and expanded, twice.
+    """
+    steps = [condition_node(p, task) for p in dict.fromkeys(action.preconditions)]
     return SequenceNode([*steps, action_node(action)])
 
 

@@ -26,7 +26,8 @@ SECTIONS = {
     "plan": [["plan"]],
     "run": [["run"]],
     "export": [["export"]],
-    "generate": [["generate", "blocksworld"], ["generate", "gripper"], ["generate", "logistics"]],
+    "generate": [["generate", "blocksworld"], ["generate", "gripper"], ["generate", "logistics"],
+                 ["generate", "assembly"]],
 }
 
 

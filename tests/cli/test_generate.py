@@ -19,6 +19,7 @@ runner = CliRunner()
         (["blocksworld", "--blocks", "8", "--seed", "3"], 8),
         (["gripper", "--balls", "5", "--rooms", "3"], 3 + 5 + 2),
         (["logistics", "--packages", "4", "--cities", "3", "--locations", "2"], 3 + 6 + 3 + 1 + 4),
+        (["assembly", "--parts", "7", "--seed", "2"], 2 + 3 + 1 + 7),
     ],
 )
 @pytest.mark.parametrize("fmt", ["pddl", "bt"])

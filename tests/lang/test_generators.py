@@ -10,7 +10,8 @@ from btplan.lang import collect
 from btplan.lang.generators import GENERATORS, generate, render
 from btplan.model import Atom, instantiate
 
-SIZES = {"blocksworld": {"blocks": 8}, "gripper": {"balls": 6}, "logistics": {"packages": 5}}
+SIZES = {"blocksworld": {"blocks": 8}, "gripper": {"balls": 6}, "logistics": {"packages": 5},
+         "assembly": {"parts": 6}}
 
 
 @pytest.mark.parametrize("name", sorted(GENERATORS))
