@@ -16,7 +16,7 @@ from btplan.lang.generators import assembly, blocksworld, gripper, logistics, re
 from btplan.model import Domain, Problem
 
 generate_app = typer.Typer(
-    help="Generate classic planning problems (blocksworld, gripper, logistics) from a seed.",
+    help="Generate planning problems (blocksworld, gripper, logistics, assembly) from a seed.",
     epilog="Examples:\n\n"
            "  btplan generate blocksworld --blocks 8 --seed 3 -o bw.pddl\n"
            "  btplan generate gripper --balls 6 --format bt --problem-only\n",
