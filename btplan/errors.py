@@ -75,3 +75,7 @@ class BudgetExceededError(PlanningError):
 
 class WorldError(BtplanError):
     """A world backend cannot do what it was asked (missing extra, bad scene)."""
+
+
+class MissingExtraError(BtplanError):
+    """An optional dependency a feature needs is not installed; the message names the extra."""
