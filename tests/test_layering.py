@@ -25,7 +25,8 @@ FORBIDDEN: dict[str, tuple[str, ...]] = {
     "btplan.planner": ("btplan.lang", "btplan.worlds", "btplan.cli", "btplan.acting"),
     "btplan.worlds": ("btplan.lang", "btplan.planner", "btplan.cli", "btplan.acting"),
     "btplan.acting.loop": ("btplan.cli", "btplan.lang", "btplan.worlds"),
-    "btplan.acting": ("btplan.cli",),
+    "btplan.acting": ("btplan.cli", "btplan.sweep"),
+    "btplan.sweep": ("btplan.cli",),
 }
 ALLOWED_SELF = {"btplan.model", "btplan.errors"}
 
