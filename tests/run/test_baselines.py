@@ -49,3 +49,18 @@ def test_repair_plans_back_to_the_rest_of_its_plan() -> None:
     out, world = act("repair", "undo:MoveTo@4")
     assert out.reached and out.planner_calls == 2
     assert [str(a) for a in world.executed][-2:] == PLAN[-2:]
+
+
+def test_growing_the_tree_within_a_tick_acts_as_soon_as_a_planner_would() -> None:
+    """Algorithm 1 as published spends a tick per expansion; with expansions_per_tick the
+    grown tree is ticked again at once, and the undisturbed run is as short as the plan's."""
+    from btplan.acting import run
+    from btplan.planner import PlannerOptions
+
+    paper = run(TASK, max_ticks=50)
+    eager = run(TASK, max_ticks=50, options=PlannerOptions(expansions_per_tick=16))
+    planned, _ = act("replan")
+    assert paper.reached and eager.reached
+    assert (paper.ticks, eager.ticks, planned.ticks) == (11, 7, 7)
+    assert [str(a) for a in eager.executed] == PLAN
+    assert len(eager.summary().expansions) == 4

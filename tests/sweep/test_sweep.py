@@ -145,3 +145,23 @@ def test_intervals() -> None:
     assert median_interval([5.0]).low == 5.0
     w = wilson(10, 10)
     assert w.value == 1.0 and 0.69 < w.low < 0.73 and w.high == pytest.approx(1.0)
+
+
+def test_baselines_are_refused_in_the_simulator(tmp_path: Path) -> None:
+    result = runner.invoke(app, ["sweep", str(DOMAINS / "youbot.bt"), "--sim", "pybullet",
+                                 "--scenario", "scene", "--seeds", "1", "--rates", "0",
+                                 "--method", "btplan,replan", "-o", str(tmp_path / "r.csv")])
+    assert result.exit_code == 2
+    assert "the replan baseline runs in the symbolic world only" in result.stderr
+
+
+@pytest.mark.slow
+def test_a_pybullet_sweep_runs_the_youbot_scene(tmp_path: Path) -> None:
+    pytest.importorskip("pybullet")
+    out = tmp_path / "youbot.csv"
+    result = runner.invoke(app, ["sweep", str(DOMAINS / "youbot.bt"), "--sim", "pybullet",
+                                 "--scenario", "scene", "--seeds", "1", "--rates", "0",
+                                 "--method", "btplan", "-j", "1", "-o", str(out), "-q"])
+    assert result.exit_code == 0, result.output
+    [only] = read_rows(str(out))
+    assert only["success"] and only["planner_calls"] > 0 and not only["error"]
