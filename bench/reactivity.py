@@ -9,6 +9,8 @@ without a per-tick limit fail on the same seed too?).
 
 Run:  python bench/reactivity.py --sweep [--seeds 1000] [--jobs 2]   (hours on 2 cores)
       python bench/reactivity.py                                    (report from the rows)
+The report reads every .parquet and .csv file of bench/results/, so extra seeds can be
+swept into files of their own (`--seeds 1000:2000 -o bench/results/obstacle_2.parquet`).
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from btplan.sweep import Job, run_one
+from btplan.sweep import Job, pool
 from btplan.sweep.output import markdown_table, plot, read_rows
 from btplan.sweep.runs import Row
 from btplan.sweep.stats import Point, summarize
@@ -49,7 +51,7 @@ CASES = (
 def command(case: Case, seeds: int, jobs: int) -> list[str]:
     return ["btplan", "sweep", *case.files, "--scenario", case.scenario,
             "--seeds", f"0:{seeds}", "--rates", RATES, "--method", METHODS,
-            "-j", str(jobs), "-o", f"bench/results/{case.scenario}.csv"]
+            "-j", str(jobs), "-o", f"bench/results/{case.scenario}.parquet"]
 
 
 def sweep(seeds: int, jobs: int) -> None:
@@ -93,22 +95,37 @@ def verdicts(points: Sequence[Point]) -> list[tuple[str, ...]]:
     return out
 
 
-def explain_failures(rows: Sequence[Row]) -> list[tuple[str, ...]]:
-    """For btplan's failed runs: does replanning with no per-tick limit fail too?
+def explain_failures(rows: Sequence[Row], jobs: int = 1) -> list[tuple[str, ...]]:
+    """For every failed run: does replanning with no per-tick limit fail on that seed too?
 
     When it does, the disturbed world had no solution within the tick budget for a
-    reactive executor either; when it does not, the failure is btplan's.
+    reactive executor either; when it does not, the failure is the method's own.
     """
-    failed: dict[tuple[str, float], list[int]] = {}
+    failed: dict[tuple[str, float, str], list[int]] = {}
     for r in rows:
-        if r["method"] == "btplan" and not r["success"] and not r["error"]:
-            failed.setdefault((r["scenario"], float(r["rate"])), []).append(int(r["seed"]))
+        if not r["success"] and not r["error"]:
+            key = (r["scenario"], float(r["rate"]), r["method"])
+            failed.setdefault(key, []).append(int(r["seed"]))
+    verdict: dict[tuple[str, float, int], bool] = {}
+    for case in CASES:
+        needed = sorted({(rate, seed) for (scenario, rate, _), seeds in failed.items()
+                         if scenario == case.scenario for seed in seeds})
+        if not needed:
+            continue
+        job = Job(tuple(str(ROOT / f) for f in case.files), case.scenario)
+        runs = [("replan-unlimited", rate, seed) for rate, seed in needed]
+        found: list[Row] = []
+        if jobs > 1:
+            pool.run_local(job, runs, found.append, jobs)
+        else:
+            pool.run_serial(job, runs, found.append)
+        for row in found:
+            verdict[(case.scenario, float(row["rate"]), int(row["seed"]))] = bool(row["success"])
     out = []
-    for (scenario, rate), seeds in sorted(failed.items()):
-        case = next(c for c in CASES if c.scenario == scenario)
-        job = Job(tuple(str(ROOT / f) for f in case.files), scenario)
-        also = sum(1 for s in seeds if not run_one(job, "replan-unlimited", rate, s)["success"])
-        out.append((scenario, f"{rate:g}", str(len(seeds)), str(also), str(len(seeds) - also)))
+    for (scenario, rate, method), seeds in sorted(failed.items()):
+        also = sum(1 for s in seeds if not verdict[(scenario, rate, s)])
+        out.append((scenario, f"{rate:g}", method, str(len(seeds)), str(also),
+                    str(len(seeds) - also)))
     return out
 
 
@@ -121,7 +138,7 @@ def _table(header: Sequence[str], cells: Sequence[Sequence[str]]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def report(rows: Sequence[Row]) -> str:
+def report(rows: Sequence[Row], jobs: int = 1) -> str:
     points = summarize(rows)
     runs = {(r["scenario"]) for r in rows}
     seeds = {s: len({r["seed"] for r in rows if r["scenario"] == s}) for s in sorted(runs)}
@@ -132,11 +149,11 @@ def report(rows: Sequence[Row]) -> str:
             "\n### Targets (btplan against the best baseline at each point)\n\n",
             _table(("scenario", "rate", "btplan ms", "best baseline ms", "planning time",
                     "success", "ticks to goal"), verdicts(points)),
-            "\n### Failed runs of btplan\n\n"]
-    failures = explain_failures(rows)
+            "\n### Failed runs\n\n"]
+    failures = explain_failures(rows, jobs)
     if failures:
-        text.append(_table(("scenario", "rate", "btplan failed", "replan-unlimited also failed",
-                            "btplan only"), failures))
+        text.append(_table(("scenario", "rate", "method", "failed runs",
+                            "replan-unlimited fails too", "its own failures"), failures))
     else:
         text.append("None.\n")
     return "".join(text)
@@ -150,6 +167,15 @@ def fill(page: Path, block: str) -> None:
     page.write_text(before + START + "\n" + block + END + rest.split(END, 1)[1], encoding="utf-8")
 
 
+def load_rows(folder: Path) -> list[Row]:
+    """Every row of the .parquet and .csv files in `folder`, one per run (later files win)."""
+    found: dict[tuple[str, str, float, int], Row] = {}
+    for path in sorted([*folder.glob("*.parquet"), *folder.glob("*.csv")]):
+        for row in read_rows(str(path)):
+            found[(row["scenario"], row["method"], float(row["rate"]), int(row["seed"]))] = row
+    return list(found.values())
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--sweep", action="store_true", help="run the sweeps first")
@@ -158,12 +184,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.sweep:
         sweep(args.seeds, args.jobs)
-    rows = [row for case in CASES if (RESULTS / f"{case.scenario}.csv").exists()
-            for row in read_rows(str(RESULTS / f"{case.scenario}.csv"))]
+    rows = load_rows(RESULTS)
     if not rows:
         print("no rows in bench/results/: run with --sweep first", file=sys.stderr)
         return 1
-    block = report(rows)
+    block = report(rows, args.jobs)
     sys.stdout.write(block)
     fill(ROOT / "docs" / "reactivity.md", block)
     plot(summarize(rows), str(ROOT / "docs" / "reactivity.png"))

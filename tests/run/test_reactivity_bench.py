@@ -44,5 +44,4 @@ def test_targets_compare_with_the_best_baseline_of_each_measure() -> None:
 
 def test_a_failure_is_explained_by_rerunning_the_seed_with_unlimited_replanning() -> None:
     rows = [row("btplan", 0.0, 0, 400, 0.001, ok=False)]
-    [(scenario, rate, failed, also, only)] = R.explain_failures(rows)
-    assert (scenario, rate, failed, also, only) == ("obstacle", "0", "1", "0", "1")
+    assert R.explain_failures(rows) == [("obstacle", "0", "btplan", "1", "0", "1")]
