@@ -117,3 +117,7 @@ class Interrupted(BtplanError):
     def __init__(self, progress: str) -> None:
         super().__init__(f"interrupted after {progress}")
         self.progress = progress
+
+
+class MissingExtraError(BtplanError):
+    """An optional dependency a feature needs is not installed; the message names the extra."""

@@ -19,13 +19,17 @@ PACKAGE = Path(__file__).resolve().parents[1] / "btplan"
 FORBIDDEN: dict[str, tuple[str, ...]] = {
     "btplan.model": ("btplan",),
     "btplan.errors": ("btplan",),
-    "btplan.lang": ("btplan.bt", "btplan.planner", "btplan.worlds", "btplan.cli", "btplan.acting"),
+    "btplan.lang": ("btplan.bt", "btplan.planner", "btplan.worlds", "btplan.cli", "btplan.acting",
+                    "btplan.sweep"),
     "btplan.bt": ("btplan.model", "btplan.lang", "btplan.planner", "btplan.worlds", "btplan.cli",
-                  "btplan.acting"),
-    "btplan.planner": ("btplan.lang", "btplan.worlds", "btplan.cli", "btplan.acting"),
-    "btplan.worlds": ("btplan.lang", "btplan.planner", "btplan.cli", "btplan.acting"),
+                  "btplan.acting", "btplan.sweep"),
+    "btplan.planner": ("btplan.lang", "btplan.worlds", "btplan.cli", "btplan.acting",
+                       "btplan.sweep"),
+    "btplan.worlds": ("btplan.lang", "btplan.planner", "btplan.cli", "btplan.acting",
+                      "btplan.sweep"),
     "btplan.acting.loop": ("btplan.cli", "btplan.lang", "btplan.worlds"),
-    "btplan.acting": ("btplan.cli",),
+    "btplan.acting": ("btplan.cli", "btplan.sweep"),
+    "btplan.sweep": ("btplan.cli",),
 }
 ALLOWED_SELF = {"btplan.model", "btplan.errors"}
 

@@ -7,6 +7,7 @@ access of planning lives here; the planner steps in btplan.planner are plain fun
 
 from __future__ import annotations
 
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -67,6 +68,8 @@ class TickReport:
     tick: int
     status: Status
     expansions: list[Expansion] = field(default_factory=list)
+    planning_seconds: float = 0.0
+    """CPU time (process time) spent growing the tree in this tick, the tick itself excluded."""
 
 
 @dataclass
@@ -126,19 +129,27 @@ class BlendedLoop:
         if before != self._last_state:
             self._seen.clear()  # an outside change: a repeated state is no longer a loop
         self.ticks += 1
-        status = self.tree.tick(self.world)
-        report = TickReport(self.ticks, status)
-        if status is FAILURE:
-            expansion = self._expand()
+        report = TickReport(self.ticks, FAILURE)
+        while True:
+            status = report.status = self.tree.tick(self.world)
+            if status is not FAILURE:
+                self._stalls = 0
+                break
+            started = time.process_time()
+            try:
+                expansion = self._expand()
+            finally:
+                report.planning_seconds += time.process_time() - started
             if expansion is not None:
                 report.expansions.append(expansion)
                 self._stalls = 0
+                if len(report.expansions) < self.options.expansions_per_tick:
+                    continue  # the world has not moved: tick the grown tree at once
             elif self.world.facts() != before:
                 self._stalls = 0  # work was done; the goal check sent it round again
             else:
                 self._stall()
-        else:
-            self._stalls = 0
+            break
         after = self.world.facts()
         if after != before:
             key = (after, len(self.expansions))

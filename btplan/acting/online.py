@@ -97,7 +97,9 @@ class _Observer:
     def after(self, report: TickReport) -> None:
         traces = list(self.recorder.traces)
         self.recorder.traces.clear()
-        nodes = traces[0].nodes if traces else ()
+        nodes = traces[-1].nodes if traces else ()
+        if len(traces) > 1:  # the tree grew and was ticked again within this tick
+            self._ids = {f"n{i}": node for i, node in enumerate(self.tree.nodes())}
         reached = {id(self._ids[n.id]): n.status for n in nodes if n.id in self._ids}
         facts = self.world.facts()
         record = TickRecord(
@@ -112,6 +114,8 @@ class _Observer:
             expansions=tuple(note(e) for e in report.expansions),
             added=tuple(str(a) for a in sorted(facts - self._facts)),
             removed=tuple(str(a) for a in sorted(self._facts - facts)),
+            planning_seconds=report.planning_seconds,
+            checks=sum(1 for t in traces for n in t.nodes if n.kind == "Condition"),
         )
         self._facts = facts
         self.records.append(record)

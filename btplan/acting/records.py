@@ -52,6 +52,10 @@ class TickRecord:
     expansions: tuple[ExpansionNote, ...] = ()
     added: tuple[str, ...] = ()
     removed: tuple[str, ...] = ()
+    planning_seconds: float = 0.0
+    """CPU time spent expanding the tree in this tick (not written to traces: it varies)."""
+    checks: int = 0
+    """Conditions the tree checked in this tick (every tick of the tree, if it grew)."""
 
     def to_dict(self) -> dict[str, Any]:
         return {

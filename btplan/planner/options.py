@@ -20,8 +20,12 @@ class PlannerOptions:
     `refine_more` prunes circular and conflicting achievers and lets a failed,
     expanded condition gain achievers that fit a later state. `protect_goals` adds,
     before an achiever that would make a goal unreachable, a condition that keeps it
-    reachable (costly: plan() uses it as its last fallback). `PlannerOptions.paper()`
-    turns every departure from the paper off, for comparison.
+    reachable (costly: plan() uses it as its last fallback). `expansions_per_tick` lets
+    the acting loop tick the tree again, within the same tick (the world has not moved),
+    after an expansion, up to that many expansions: Algorithm 1 as published spends a
+    tick of the world per expansion, which a sequential planner, planning before it
+    acts, does not. `PlannerOptions.paper()` turns every departure from the paper off,
+    for comparison.
     """
 
     max_expansions: int = 1000
@@ -33,6 +37,7 @@ class PlannerOptions:
     refine_more: bool = True
     protect_goals: bool = False
     stall_limit: int = 3
+    expansions_per_tick: int = 1
 
     @classmethod
     def paper(cls, **changes: Any) -> PlannerOptions:

@@ -26,6 +26,7 @@ SECTIONS = {
     "plan": [["plan"]],
     "run": [["run"]],
     "export": [["export"]],
+    "sweep": [["sweep"]],
     "generate": [["generate", "blocksworld"], ["generate", "gripper"], ["generate", "logistics"],
                  ["generate", "assembly"]],
 }

@@ -1,4 +1,4 @@
-"""The reactivity benchmark compares like with like: a correct baseline, the same streams."""
+"""The reactivity report judges btplan against the best baseline at each point."""
 
 from __future__ import annotations
 
@@ -7,7 +7,8 @@ import sys
 from pathlib import Path
 from types import ModuleType
 
-from btplan.acting.offline import load
+from btplan.sweep.runs import Row
+from btplan.sweep.stats import summarize
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -22,52 +23,25 @@ def bench() -> ModuleType:
 
 
 R = bench()
-TASK = load(str(ROOT / "domains/pick_place.bt"))
 
 
-def test_the_baseline_plans_the_shortest_sequence() -> None:
-    plan = R.bfs_plan(TASK, TASK.initial_state)
-    assert [str(a) for a in plan] == ["MoveTo(cube, tau_cube)", "Pick(cube)",
-                                      "MoveTo(goal, tau_goal)", "Place(cube, goal)"]
+def row(method: str, rate: float, seed: int, ticks: int, seconds: float, ok: bool = True) -> Row:
+    return {"scenario": "obstacle", "method": method, "rate": rate, "seed": seed, "success": ok,
+            "ticks": ticks, "actions": 4, "planner_calls": 1, "planning_seconds": seconds,
+            "checks": 5.0, "disturbances": 0, "error": ""}
 
 
-def test_undisturbed_the_tree_pays_one_tick_per_expansion() -> None:
-    """Both chain finished actions into the next one within a tick; the tree also spends
-    the ticks in which it fails and grows (Algorithm 1 ticks until FAILURE, then expands)."""
-    calm = R.replanning_episode(TASK, [], 0, 100)
-    blended = R.blended_episode(TASK, [], 0, 100)
-    assert calm.reached and blended.reached
-    assert (calm.planner_calls, blended.planner_calls) == (1, 4)
-    assert calm.ticks == 7
-    assert blended.ticks == calm.ticks + blended.planner_calls
+def test_targets_compare_with_the_best_baseline_of_each_measure() -> None:
+    rows = [row("btplan", 0.1, s, 12, 0.001) for s in range(3)]
+    rows += [row("replan", 0.1, s, 10, 0.004) for s in range(3)]
+    rows += [row("repair", 0.1, s, 11, 0.010) for s in range(3)]
+    [verdict] = R.verdicts(summarize(rows))
+    assert verdict[:4] == ("obstacle", "0.1", "1.00", "4.00")
+    assert verdict[4] == "4.0x **missed** (target 5x)"  # 5x lower is the target from 0.1
+    assert verdict[5].endswith(" met")
+    assert verdict[6] == "12 vs 10 **missed**"  # more than 10% above
 
 
-def test_the_baseline_replans_when_the_next_step_cannot_run() -> None:
-    scenario = R.SCENARIOS[0]
-    agents = R.make_agents(scenario, ["undo:Pick@5"], 0.0, 0)
-    episode = R.replanning_episode(TASK, agents, 0, 100)
-    assert episode.reached
-    assert episode.planner_calls == 2
-    assert episode.disturbances == 1
-
-
-def test_a_seed_fixes_the_stream_and_both_executors_finish_under_it() -> None:
-    scenario = R.SCENARIOS[0]
-    streams = ["fail:MoveTo@p=0.3"]
-
-    def fired(seed: int) -> list[int]:
-        agents = R.make_agents(scenario, streams, 0.3, seed)
-        return [t for t in range(1, 60) if agents[0].fires(t)]
-
-    assert fired(7) == fired(7)
-    blended = R.blended_episode(TASK, R.make_agents(scenario, streams, 0.3, 7), 7, 200)
-    replanned = R.replanning_episode(TASK, R.make_agents(scenario, streams, 0.3, 7), 7, 200)
-    assert blended.reached and replanned.reached
-
-
-def test_pyperplan_as_replanner_finds_a_plan_of_the_same_length() -> None:
-    task = load(str(ROOT / "domains/pick_place_obstacle.bt"))
-    state = task.initial_state
-    assert len(R.pyperplan_plan(task, state)) == len(R.bfs_plan(task, state)) == 4
-    episode = R.replanning_episode(task, [], 0, 100, planner=R.pyperplan_plan)
-    assert episode.reached and episode.planner_calls == 1
+def test_a_failure_is_explained_by_rerunning_the_seed_with_unlimited_replanning() -> None:
+    rows = [row("btplan", 0.0, 0, 400, 0.001, ok=False)]
+    assert R.explain_failures(rows) == [("obstacle", "0", "btplan", "1", "0", "1")]

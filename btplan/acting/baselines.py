@@ -1,0 +1,290 @@
+"""Sequential-plan executors that the blended loop is measured against.
+
+The paper's claim (Problem 1) is that a backchained BT copes with external agents more
+cheaply than re-planning; that claim is only worth something against the baselines a
+user would really pick. Both here plan with pyperplan's greedy best-first search and
+h_FF, grounded once per run, and execute the plan one step at a time in the same
+world, with the same agents, under the same tick budget as the blended loop:
+
+- `replan` monitors the whole remaining plan every tick and replans from scratch as
+  soon as it no longer reaches the goal from the observed state;
+- `repair` looks at the next step only; when it cannot run (or failed) it first
+  reuses the rest of its plan (an agent may have done steps for it), then plans a
+  short prefix back to the rest of the plan, and replans from scratch only if that
+  fails.
+
+`replan-unlimited` is `replan` without the one-call-per-tick cap: when it too fails
+within the budget, the disturbed world had no solution in time.
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from btplan.bt import FAILURE, RUNNING, SUCCESS
+from btplan.errors import InputError, MissingExtraError
+from btplan.model import EQUALITY, Atom, GroundAction, GroundLiteral, Task, instantiate
+from btplan.worlds.agents import Agent, act_all
+
+BASELINES = ("replan", "repair", "replan-unlimited")
+
+
+def require_pyperplan() -> None:
+    """Refuse the baselines up front when pyperplan is missing, with the extra to install."""
+    try:
+        import pyperplan  # type: ignore[import-untyped]  # noqa: F401
+    except ImportError:
+        raise MissingExtraError(
+            "the replan and repair baselines need pyperplan: pip install 'btplan[replan]'"
+        ) from None
+
+
+def check_strips(task: Task) -> None:
+    """pyperplan states STRIPS only: positive preconditions and goals."""
+    negative = [str(g) for g in task.goal_literals if not g.positive]
+    negative += sorted({f"{a.name}: not {p.predicate}" for a in task.domain.actions
+                        for p in a.preconditions if not p.positive and p.predicate != EQUALITY})
+    if negative:
+        raise InputError(f"the baselines plan STRIPS tasks only; this one has negative "
+                         f"conditions ({', '.join(negative[:3])})", None,
+                         "compare with --method btplan only")
+
+
+class Grounding:
+    """Every grounded action of a task as pyperplan operators, built once per run.
+
+    `where` constraints on predicates that actions or agents may change (ClearPath's
+    `blocks(s, t)`) become preconditions; the others filter the groundings.
+    """
+
+    def __init__(self, task: Task) -> None:
+        from pyperplan.task import Operator  # type: ignore[import-untyped]
+
+        fluent = {e.predicate for a in task.domain.actions for e in a.effects}
+        state = task.initial_state
+        self.actions: list[GroundAction] = []
+        for template in task.domain.actions:
+            names = [p.name for p in template.parameters]
+            domains = [task.objects_of(p.type) for p in template.parameters]
+            for args in itertools.product(*domains):
+                binding = dict(zip(names, args))
+                extra: list[GroundLiteral] = []
+                ok = True
+                checks = [*template.constraints,
+                          *(c for c in template.preconditions if c.predicate == EQUALITY)]
+                for c in checks:
+                    ground = tuple(binding.get(a, a) for a in c.args)
+                    if c.predicate == EQUALITY:
+                        ok = (ground[0] == ground[1]) is c.positive
+                    elif c.predicate in fluent or not c.positive:
+                        extra.append(GroundLiteral(Atom(c.predicate, ground), c.positive))
+                        continue
+                    else:
+                        ok = (Atom(c.predicate, ground) in state) is c.positive
+                    if not ok:
+                        break
+                if ok:
+                    action = instantiate(template, tuple(args))
+                    pre = (*action.preconditions, *(e for e in extra if e.positive))
+                    self.actions.append(action.model_copy(update={"preconditions": pre}))
+        universe = set(state).union(*(a.add for a in self.actions))
+        universe.update(p.atom for a in self.actions for p in a.preconditions)
+        universe.update(g.atom for g in task.goal_literals)
+        self.universe = frozenset(universe)
+        self.by_name = {str(a): a for a in self.actions}
+        self.operators = [
+            Operator(str(a), frozenset(str(p.atom) for p in a.preconditions),
+                     frozenset(str(x) for x in a.add),
+                     frozenset(str(x) for x in self.universe if a.deletes(x)))
+            for a in self.actions
+        ]
+        self.facts = {str(x) for x in self.universe}
+        self.goal = frozenset(str(g.atom) for g in task.goal_literals)
+        self._heuristics: dict[frozenset[str], Any] = {}
+
+    def plan(self, state: frozenset[Atom], goal: frozenset[str] | None = None
+             ) -> list[GroundAction] | None:
+        """A plan from `state` to `goal` (the task's by default) by GBFS with h_FF, or None."""
+        from pyperplan.heuristics.relaxation import hFFHeuristic  # type: ignore[import-untyped]
+        from pyperplan.search import greedy_best_first_search  # type: ignore[import-untyped]
+        from pyperplan.task import Task as StripsTask
+
+        target = self.goal if goal is None else goal
+        init = frozenset(str(x) for x in state if x in self.universe)
+        strips = StripsTask("replan", self.facts, init, target, self.operators)
+        heuristic = self._heuristics.get(target)
+        if heuristic is None:  # h_FF depends on the goal only, not on the initial state
+            heuristic = self._heuristics[target] = hFFHeuristic(strips)
+        found = greedy_best_first_search(strips, heuristic)
+        return None if found is None else [self.by_name[op.name] for op in found]
+
+
+@dataclass(slots=True)
+class BaselineOutcome:
+    """What a baseline run did; the same measures the sweep takes from the blended loop."""
+
+    reached: bool
+    ticks: int
+    actions: int
+    planner_calls: int
+    planning_seconds: float
+    checks: int
+    disturbances: int
+
+
+class PlanExecutor:
+    """A sequential plan executed one step per tick (a finished step lets the next start).
+
+    `monitor` "plan" validates the whole rest of the plan every tick (replanning from
+    scratch); "step" only the next step (plan repair). `per_tick` bounds planner calls
+    per tick (None: unbounded).
+    """
+
+    def __init__(self, task: Task, world: Any, grounding: Grounding, monitor: str,
+                 per_tick: int | None = 1) -> None:
+        self.task, self.world, self.grounding = task, world, grounding
+        self.monitor, self.per_tick = monitor, per_tick
+        self.plan: list[GroundAction] = []
+        self.step = 0
+        self.running: GroundAction | None = None
+        self.failed = False
+        self.calls, self.seconds, self.checks = 0, 0.0, 0
+        self._calls_this_tick = 0
+
+    # --- monitoring -------------------------------------------------------------------
+
+    def _holds(self, literals: Sequence[GroundLiteral], state: frozenset[Atom]) -> bool:
+        for literal in literals:
+            self.checks += 1
+            if not literal.holds(state):
+                return False
+        return True
+
+    def _reaches_goal(self, start: int, state: frozenset[Atom]) -> bool:
+        """Does plan[start:] run from `state` and end with the goal true?"""
+        for action in self.plan[start:]:
+            if not self._holds(action.preconditions, state):
+                return False
+            state = action.apply(state)
+        return self._holds(self.task.goal_literals, state)
+
+    def done(self) -> bool:
+        return self._holds(self.task.goal_literals, self.world.facts())
+
+    # --- planning ---------------------------------------------------------------------
+
+    def _call(self, state: frozenset[Atom], goal: frozenset[str] | None = None
+              ) -> list[GroundAction] | None:
+        self._calls_this_tick += 1
+        self.calls += 1
+        started = time.process_time()
+        found = self.grounding.plan(state, goal)
+        self.seconds += time.process_time() - started
+        return found
+
+    def _may_call(self) -> bool:
+        return self.per_tick is None or self._calls_this_tick < self.per_tick
+
+    def _replan(self, state: frozenset[Atom]) -> bool:
+        found = self._call(state)
+        self.plan, self.step = found or [], 0
+        return found is not None
+
+    def _repair(self, state: frozenset[Atom]) -> bool:
+        """Reuse the rest of the plan, else plan back to it, else replan from scratch."""
+        for start in range(len(self.plan), self.step - 1, -1):  # the shortest rest first
+            if self._reaches_goal(start, state):
+                self.step = start
+                return True
+        need = _regress(self.plan[self.step:], self.task)
+        if need is not None and self.step < len(self.plan):
+            prefix = self._call(state, frozenset(str(a) for a in need))
+            if prefix is not None:
+                self.plan, self.step = prefix + self.plan[self.step:], 0
+                return True
+            if not self._may_call():
+                return False
+        return self._replan(state)
+
+    def _ensure_plan(self) -> bool:
+        """Make sure the next step is worth starting; False when no plan is at hand."""
+        state = self.world.facts()
+        if self.monitor == "plan":
+            if self._reaches_goal(self.step, state):
+                return True
+            return self._may_call() and self._replan(state)
+        nxt = self.plan[self.step] if self.step < len(self.plan) else None
+        if not self.failed and nxt is not None and self._holds(nxt.preconditions, state):
+            return True
+        self.failed = False
+        return self._may_call() and self._repair(state)
+
+    # --- one tick ---------------------------------------------------------------------
+
+    def tick(self) -> bool:
+        """One tick; True when the goal holds."""
+        self._calls_this_tick = 0
+        if self.running is not None and self.monitor == "plan" and not self.done():
+            if not self._ensure_plan():
+                return False
+            if self.plan[self.step].key != self.running.key:
+                self.world.halt(self.running.key)
+                self.running = None
+        while True:
+            if self.done():
+                return True
+            if self.running is None:
+                if not self._ensure_plan():
+                    return False
+                action = self.plan[self.step]
+                status = self.world.start(action.key)
+            else:
+                action = self.running
+                status = self.world.step(action.key)
+            self.running = action if status is RUNNING else None
+            if status is SUCCESS:
+                self.step += 1
+                continue
+            if status is FAILURE:
+                self.failed = True
+            return self.done()
+
+
+def _regress(rest: Sequence[GroundAction], task: Task) -> frozenset[Atom] | None:
+    """The atoms that must hold for `rest` to run and reach the goal (None: it never can)."""
+    need = {g.atom for g in task.goal_literals}
+    for action in reversed(rest):
+        if any(action.deletes(a) for a in need):
+            return None
+        need = (need - set(action.add)) | {p.atom for p in action.preconditions}
+    return frozenset(need)
+
+
+def run_baseline(task: Task, world: Any, agents: Sequence[Agent], method: str,
+                 max_ticks: int, grounding: Grounding | None = None) -> BaselineOutcome:
+    """Execute `method` (one of BASELINES) in `world` with `agents` acting before each tick.
+
+    Grounding is timed as planning: a from-scratch planner pays it on its first call.
+    """
+    if method not in BASELINES:
+        raise InputError(f"unknown baseline '{method}'", None, "one of " + ", ".join(BASELINES))
+    require_pyperplan()
+    check_strips(task)
+    started = time.process_time()
+    grounding = grounding or Grounding(task)
+    setup = time.process_time() - started
+    executor = PlanExecutor(task, world, grounding, "step" if method == "repair" else "plan",
+                            None if method == "replan-unlimited" else 1)
+    executor.seconds = setup
+    reached, ticks, seen = False, max_ticks, 0
+    for tick in range(1, max_ticks + 1):
+        seen += len(act_all(agents, world, tick))
+        if executor.tick():
+            reached, ticks = True, tick
+            break
+    return BaselineOutcome(reached, ticks, len(world.executed), executor.calls,
+                           executor.seconds, executor.checks, seen)

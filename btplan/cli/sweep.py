@@ -1,0 +1,165 @@
+"""The `btplan sweep` command: many seeded runs of several methods, rows out, summary shown."""
+
+from __future__ import annotations
+
+import os
+from typing import Annotated, Any
+
+import typer
+from typer.core import TyperCommand
+from rich.markup import escape
+from rich.progress import (
+    BarColumn,
+    MofNCompleteColumn,
+    Progress,
+    TextColumn,
+    TimeElapsedColumn,
+    TimeRemainingColumn,
+)
+
+from btplan.acting.baselines import BASELINES, require_pyperplan
+from btplan.cli.app import app, guarded, stderr
+from btplan.cli.outputs import Output, check_outputs
+from btplan.cli.run import Sim
+from btplan.errors import InputError, Span
+from btplan.sweep import output, pool
+from btplan.sweep.runs import Job, Row, check_methods, prepared
+from btplan.sweep.stats import summarize
+
+EXIT_INTERRUPTED = 130
+
+
+def parse_seeds(text: str) -> range:
+    """`A:B` is seeds A to B-1, as a Python range; `N` alone is seeds 0 to N-1."""
+    first, sep, last = text.partition(":")
+    try:
+        seeds = range(int(first), int(last)) if sep else range(int(first))
+    except ValueError:
+        raise InputError(f"expected A:B (seeds A to B-1), not '{text}'",
+                         Span("--seeds", 1, 1)) from None
+    if not seeds:
+        raise InputError(f"the seed range '{text}' is empty", Span("--seeds", 1, 1))
+    return seeds
+
+
+def parse_rates(text: str) -> list[float]:
+    rates = []
+    for item in text.split(","):
+        try:
+            rate = float(item)
+        except ValueError:
+            rate = -1.0
+        if not 0.0 <= rate <= 1.0:
+            raise InputError(f"a rate is a probability between 0 and 1, not '{item}'",
+                             Span("--rates", 1, 1))
+        rates.append(rate)
+    return sorted(set(rates))
+
+
+class _OptionalRayAddress(TyperCommand):
+    """Lets `--ray` stand alone (a local Ray) or take an address, as `--ray [ADDRESS]`."""
+
+    def parse_args(self, ctx: Any, args: list[str]) -> list[str]:
+        fixed = list(args)
+        for i, arg in enumerate(fixed):
+            if arg == "--":
+                break
+            if arg == "--ray" and (i + 1 == len(fixed) or fixed[i + 1].startswith("-")):
+                fixed.insert(i + 1, LOCAL)
+                break
+        return super().parse_args(ctx, fixed)
+
+
+LOCAL = "local"
+
+
+EXAMPLES = """Examples:
+
+  btplan sweep domains/pick_place_obstacle.bt --scenario obstacle --seeds 0:100 --rates 0,0.1,0.2 -o rows.csv
+  btplan sweep domains/pick_place_obstacle.bt --scenario obstacle --seeds 0:1000 --rates 0.1 --method btplan,repair -o rows.parquet --plot rows.png
+  btplan sweep domains/pick_place.bt --seeds 0:50 --rates 0.2 --ray -o rows.csv
+"""
+
+
+@app.command(cls=_OptionalRayAddress, epilog=EXAMPLES)
+@guarded
+def sweep(
+    domain: Annotated[str, typer.Argument(
+        metavar="DOMAIN", help="Domain (.bt or .pddl), or domain and problem in one .bt file.")],
+    seeds: Annotated[str, typer.Option(
+        metavar="A:B", help="Seeds A to B-1 (N alone: 0 to N-1).")],
+    rates: Annotated[str, typer.Option(metavar="R,...", help="Disturbance rates per tick.")],
+    output_path: Annotated[str, typer.Option(
+        "-o", "--output", metavar="FILE", help="One row per run: .csv or .parquet.")],
+    problem: Annotated[str | None, typer.Argument(
+        metavar="PROBLEM", help="Problem file, when it is not in DOMAIN.", show_default=False)
+    ] = None,
+    scenario: Annotated[str, typer.Option(
+        metavar="NAME", help="undo, obstacle, towers, packages, scene; a spec file with {p} for the rate; "
+             "or module:attribute.")] = "undo",
+    method: Annotated[str, typer.Option(
+        metavar="M,...", help="btplan, btplan-paper, replan, repair, replan-unlimited.")
+    ] = "btplan,replan,repair",
+    sim: Annotated[Sim, typer.Option(help="The world to act in.")] = Sim.symbolic,
+    jobs: Annotated[int | None, typer.Option(
+        "-j", "--jobs", min=1, metavar="N", help="Local worker processes (default: all cores).")] = None,
+    ray: Annotated[str | None, typer.Option(
+        "--ray", metavar="[ADDRESS]",
+        help="Run as Ray tasks: a local Ray, or the cluster at ADDRESS.")] = None,
+    max_ticks: Annotated[int | None, typer.Option(
+        min=1, metavar="N", help="Tick budget per run (default: the scenario's).")] = None,
+    plot: Annotated[str | None, typer.Option(
+        metavar="OUT.png", help="Draw success, planning time and ticks against rate.")] = None,
+    quiet: Annotated[bool, typer.Option("-q", "--quiet", help="No progress bar.")] = False,
+) -> None:
+    """Run every method on every seed at every rate; write the rows and print medians.
+
+    Exit 0 when every run ended (reached or not), 1 when some runs crashed (error
+    rows), 2 on bad input, 130 on Ctrl-C (the rows done so far are written).
+    """
+    files = [domain] if problem is None else [domain, problem]
+    check_outputs(Output("-o/--output", output_path), Output("--plot", plot))
+    seed_range, rate_list = parse_seeds(seeds), parse_rates(rates)
+    methods = [m.strip() for m in method.split(",") if m.strip()]
+    check_methods(methods, sim.value)
+    if any(m in BASELINES for m in methods):
+        require_pyperplan()
+    output.check_output(output_path)
+    job = Job(tuple(files), scenario, sim.value, max_ticks)
+    prepared(job)  # bad domain files or scenarios are refused here, not in every worker
+    runs = [(m, r, s) for r in rate_list for m in methods for s in seed_range]
+    rows: list[Row] = []
+    interrupted = False
+    with Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
+                  TimeElapsedColumn(), TextColumn("eta"), TimeRemainingColumn(),
+                  console=stderr, disable=quiet, transient=True) as progress:
+        task = progress.add_task("runs", total=len(runs))
+
+        def on_row(row: Row) -> None:
+            rows.append(row)
+            progress.advance(task)
+
+        try:
+            if ray is not None:
+                pool.run_ray(job, runs, on_row, None if ray == LOCAL else ray,
+                             jobs or None)
+            elif (jobs or os.cpu_count() or 1) == 1:
+                pool.run_serial(job, runs, on_row)
+            else:
+                pool.run_local(job, runs, on_row, jobs or os.cpu_count() or 1)
+        except KeyboardInterrupt:
+            interrupted = True
+    output.write_rows(output_path, rows)
+    points = summarize(rows)
+    stderr.print(escape(output.markdown_table(points)), end="")
+    if plot is not None and points:
+        output.plot(points, plot)
+    if interrupted:
+        stderr.print(f"[bold red]interrupted:[/] {len(rows)} of {len(runs)} runs written "
+                     f"to {escape(output_path)}")
+        raise typer.Exit(EXIT_INTERRUPTED)
+    errors = [r for r in rows if r["error"]]
+    if errors:
+        stderr.print(f"[bold red]failed:[/] {len(errors)} runs crashed; first: "
+                     f"{escape(errors[0]['error'])}")
+        raise typer.Exit(1)

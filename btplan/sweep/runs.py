@@ -1,0 +1,127 @@
+"""One seeded run of one method: the unit of work a sweep hands to a worker.
+
+A run is named by (method, rate, seed) within a `Job` (domain files, scenario, world),
+and gives one row of plain values, so that any worker (a local process, a Ray task)
+computes the same row for the same name. A run that raises becomes a row with the
+error, never a missing row.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+from typing import Any
+
+from btplan import acting
+from btplan.acting.baselines import BASELINES, run_baseline
+from btplan.errors import BtplanError, InputError, Span
+from btplan.model import Task
+from btplan.planner import PlannerOptions
+from btplan.sweep.scenarios import Scenario, resolve
+
+METHODS = ("btplan", "btplan-paper", *BASELINES)
+
+COLUMNS = ("scenario", "method", "rate", "seed", "success", "ticks", "actions",
+           "planner_calls", "planning_seconds", "checks", "disturbances", "error")
+"""One row per run; `checks` is condition checks per tick, `planning_seconds` CPU time."""
+
+TIMED = ("planning_seconds",)
+"""Columns that vary between two runs of the same seed (everything else repeats)."""
+
+Row = dict[str, Any]
+
+EXPANSIONS = 64
+"""Expansions the `btplan` method may make within one tick before the world moves on
+(the baselines too plan and start acting in the same tick); `btplan-paper` makes one."""
+
+
+@dataclass(frozen=True)
+class Job:
+    """What every run of a sweep shares; small and picklable, sent to each worker."""
+
+    files: tuple[str, ...]
+    scenario: str
+    sim: str = "symbolic"
+    max_ticks: int | None = None
+
+
+@functools.lru_cache(maxsize=4)
+def prepared(job: Job) -> tuple[Task, Scenario, int]:
+    """The task as the scenario runs it, the scenario and the tick budget (once per worker)."""
+    scenario = resolve(job.scenario)
+    task = scenario.prepare(acting.load(*job.files))
+    scenario.check(task)
+    return task, scenario, job.max_ticks or scenario.max_ticks
+
+
+def check_methods(methods: list[str], sim: str) -> None:
+    for method in methods:
+        if method not in METHODS:
+            raise InputError(f"unknown method '{method}'", Span("--method", 1, 1),
+                             "one of " + ", ".join(METHODS))
+        if sim != "symbolic" and method not in ("btplan", "btplan-paper"):
+            raise InputError(f"the {method} baseline runs in the symbolic world only",
+                             Span("--method", 1, 1), "use --method btplan with --sim pybullet")
+
+
+def empty_row(job: Job, method: str, rate: float, seed: int, error: str) -> Row:
+    try:
+        scenario = resolve(job.scenario).name
+    except BtplanError:
+        scenario = job.scenario
+    return {"scenario": scenario, "method": method, "rate": rate, "seed": seed,
+            "success": False, "ticks": 0, "actions": 0, "planner_calls": 0,
+            "planning_seconds": 0.0, "checks": 0.0, "disturbances": 0, "error": error}
+
+
+def run_one(job: Job, method: str, rate: float, seed: int) -> Row:
+    """Run `method` once; an error inside becomes the row's `error` column."""
+    try:
+        task, scenario, max_ticks = prepared(job)
+        row = _measure(job, task, scenario, max_ticks, method, rate, seed)
+    except BtplanError as error:
+        return empty_row(job, method, rate, seed, f"{type(error).__name__}: {error}")
+    except Exception as error:  # a bug in one run must not sink the sweep
+        return empty_row(job, method, rate, seed, f"{type(error).__name__}: {error}")
+    row.update(scenario=scenario.name, method=method, rate=rate, seed=seed, error="")
+    return row
+
+
+def _world(job: Job, task: Task, seed: int) -> tuple[Any, list[Any]]:
+    if job.sim == "symbolic":
+        from btplan.worlds.symbolic import SymbolicWorld
+
+        return SymbolicWorld(task, seed=seed), []
+    from btplan.worlds.pybullet import open_world
+
+    world = open_world(task, seed=seed)
+    return world, list(world.scene_agents())
+
+
+def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: str,
+             rate: float, seed: int) -> Row:
+    world, scene_agents = _world(job, task, seed)
+    agents = [*scenario.agents(task, rate, seed), *scene_agents]
+    try:
+        if method in BASELINES:
+            out = run_baseline(task, world, agents, method, max_ticks)
+            return {"success": out.reached, "ticks": out.ticks, "actions": out.actions,
+                    "planner_calls": out.planner_calls,
+                    "planning_seconds": out.planning_seconds,
+                    "checks": out.checks / max(out.ticks, 1),
+                    "disturbances": out.disturbances}
+        options = (PlannerOptions.paper(stall_limit=max_ticks) if method == "btplan-paper"
+                   else PlannerOptions(stall_limit=max_ticks, expansions_per_tick=EXPANSIONS))
+        outcome = acting.run(task, agents=agents, world=world, seed=seed,
+                             max_ticks=max_ticks, options=options)
+    finally:
+        if hasattr(world, "close"):
+            world.close()
+    records = outcome.records
+    checks = sum(r.checks for r in records)
+    return {"success": outcome.reached, "ticks": outcome.ticks,
+            "actions": len(outcome.executed),
+            "planner_calls": sum(len(r.expansions) for r in records),
+            "planning_seconds": sum(r.planning_seconds for r in records),
+            "checks": checks / max(outcome.ticks, 1),
+            "disturbances": sum(len(r.disturbances) for r in records)}

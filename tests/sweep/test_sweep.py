@@ -1,0 +1,167 @@
+"""`btplan sweep`: the same rows whatever ran them, dead workers retried, Ctrl-C keeps rows."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Any
+
+import pytest
+from typer.testing import CliRunner
+
+from btplan.cli import app
+from btplan.sweep import Job, pool
+from btplan.sweep.output import read_rows, sort_rows
+from btplan.sweep.runs import TIMED, Row
+from btplan.sweep.stats import median_interval, wilson
+
+DOMAINS = Path(__file__).resolve().parents[2] / "domains"
+OBSTACLE = str(DOMAINS / "pick_place_obstacle.bt")
+JOB = Job((OBSTACLE,), "obstacle")
+RUNS = [(m, r, s) for r in (0.0, 0.2) for m in ("btplan", "repair") for s in range(3)]
+runner = CliRunner()
+
+
+def untimed(rows: list[Row]) -> list[dict[str, Any]]:
+    return [{k: v for k, v in r.items() if k not in TIMED} for r in sort_rows(rows)]
+
+
+@pytest.fixture(scope="module")
+def serial_rows() -> list[Row]:
+    rows: list[Row] = []
+    pool.run_serial(JOB, RUNS, rows.append)
+    return rows
+
+
+def test_one_and_two_local_workers_give_the_same_rows(serial_rows: list[Row]) -> None:
+    rows: list[Row] = []
+    pool.run_local(JOB, list(reversed(RUNS)), rows.append, 2)
+    assert untimed(rows) == untimed(serial_rows)
+    assert len(rows) == len(RUNS) and not any(r["error"] for r in rows)
+    assert {r["method"] for r in rows} == {"btplan", "repair"}
+
+
+@pytest.mark.slow
+def test_a_local_ray_gives_the_same_rows(serial_rows: list[Row]) -> None:
+    pytest.importorskip("ray")
+    rows: list[Row] = []
+    pool.run_ray(JOB, RUNS, rows.append, None, 2)  # ray.init(num_cpus=2)
+    assert untimed(rows) == untimed(serial_rows)
+
+
+def test_a_killed_worker_loses_only_its_run_which_is_retried(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    marker = tmp_path / "killed"
+    monkeypatch.setenv("BTPLAN_TEST_CRASH_MARKER", str(marker))
+    monkeypatch.syspath_prepend(str(Path(__file__).parent))
+    runs = [("repair", 0.2, s) for s in range(4)]
+    rows: list[Row] = []
+    pool.run_local(Job((OBSTACLE,), "crash_scenario:CRASH_ONCE"), runs, rows.append, 2)
+    assert marker.exists()  # the run of seed 1 did kill its worker
+    assert sorted(r["seed"] for r in rows) == [0, 1, 2, 3]
+    assert not any(r["error"] for r in rows)
+    calm: list[Row] = []
+    pool.run_serial(Job((OBSTACLE,), "undo"), runs, calm.append)
+    assert [r["ticks"] for r in sort_rows(rows)] == [r["ticks"] for r in sort_rows(calm)]
+
+
+def test_a_run_that_kills_every_worker_becomes_an_error_row(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("BTPLAN_TEST_CRASH_MARKER", str(tmp_path / "x"))
+    monkeypatch.syspath_prepend(str(Path(__file__).parent))
+    rows: list[Row] = []
+    pool.run_local(Job((OBSTACLE,), "crash_scenario:CRASH_ALWAYS"),
+                   [("repair", 0.2, s) for s in range(3)], rows.append, 2)
+    errors = {r["seed"]: r["error"] for r in rows}
+    assert sorted(errors) == [0, 1, 2]
+    assert errors[1].startswith("WorkerDied") and not errors[0] and not errors[2]
+
+
+def test_the_cli_writes_sorted_rows_and_a_summary(tmp_path: Path) -> None:
+    out = tmp_path / "rows.csv"
+    result = runner.invoke(app, ["sweep", OBSTACLE, "--scenario", "obstacle", "--seeds", "0:3",
+                                 "--rates", "0.2,0", "--method", "btplan,replan", "-j", "1",
+                                 "-o", str(out), "-q"])
+    assert result.exit_code == 0, result.output
+    rows = read_rows(str(out))
+    assert [(r["method"], r["rate"], r["seed"]) for r in rows] == [
+        (m, r, s) for m in ("btplan", "replan") for r in (0.0, 0.2) for s in range(3)]
+    assert all(r["success"] and r["planning_seconds"] > 0 for r in rows)
+    assert "| obstacle | btplan | 0 | 3 | 100% [44%, 100%] | 7 [7, 7] |" in result.stderr
+
+
+def test_ctrl_c_keeps_the_rows_already_done(tmp_path: Path,
+                                           monkeypatch: pytest.MonkeyPatch) -> None:
+    serial = pool.run_serial
+
+    def interrupted(job: Job, runs: list[pool.Run], on_row: pool.OnRow) -> None:
+        serial(job, runs[:2], on_row)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(pool, "run_serial", interrupted)
+    out = tmp_path / "rows.csv"
+    result = runner.invoke(app, ["sweep", OBSTACLE, "--scenario", "obstacle", "--seeds", "0:5",
+                                 "--rates", "0.1", "--method", "btplan", "-j", "1", "-o", str(out),
+                                 "-q"])
+    assert result.exit_code == 130
+    assert [r["seed"] for r in read_rows(str(out))] == [0, 1]
+    assert "2 of 5 runs written" in result.stderr
+
+
+def test_parquet_rows_read_back(tmp_path: Path) -> None:
+    pytest.importorskip("pyarrow")
+    out = tmp_path / "rows.parquet"
+    result = runner.invoke(app, ["sweep", OBSTACLE, "--scenario", "obstacle", "--seeds", "2",
+                                 "--rates", "0", "--method", "repair", "-j", "1", "-o", str(out),
+                                 "-q"])
+    assert result.exit_code == 0, result.output
+    assert [(r["method"], r["seed"], r["ticks"]) for r in read_rows(str(out))] == [
+        ("repair", 0, 7), ("repair", 1, 7)]
+
+
+def test_missing_extras_and_bad_flags_are_one_clean_line(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    base = ["sweep", OBSTACLE, "--seeds", "0:2", "--rates", "0", "-j", "1", "-q"]
+    monkeypatch.setitem(sys.modules, "pyarrow", None)
+    result = runner.invoke(app, [*base, "-o", str(tmp_path / "r.parquet")])
+    assert result.exit_code == 2
+    assert "Parquet output needs pyarrow: pip install 'btplan[parquet]'" in result.stderr
+    monkeypatch.setitem(sys.modules, "pyperplan", None)
+    result = runner.invoke(app, [*base, "-o", str(tmp_path / "r.csv")])
+    assert result.exit_code == 2
+    assert "need pyperplan: pip install 'btplan[replan]'" in result.stderr
+    result = runner.invoke(app, [*base, "--scenario", "obstacel", "-o", str(tmp_path / "r.csv"),
+                                 "--method", "btplan"])
+    assert result.exit_code == 2
+    assert "unknown scenario 'obstacel' (did you mean 'obstacle'?)" in result.stderr
+    result = runner.invoke(app, [*base, "--method", "btplan", "-o", str(tmp_path / "r.txt")])
+    assert result.exit_code == 2 and "name it .csv or .parquet" in result.stderr
+    assert not list(tmp_path.iterdir())
+
+
+def test_intervals() -> None:
+    m = median_interval(range(100))
+    assert (m.value, m.low, m.high) == (49.5, 39, 60)  # ranks 40 and 61 of 100
+    assert median_interval([5.0]).low == 5.0
+    w = wilson(10, 10)
+    assert w.value == 1.0 and 0.69 < w.low < 0.73 and w.high == pytest.approx(1.0)
+
+
+def test_baselines_are_refused_in_the_simulator(tmp_path: Path) -> None:
+    result = runner.invoke(app, ["sweep", str(DOMAINS / "youbot.bt"), "--sim", "pybullet",
+                                 "--scenario", "scene", "--seeds", "1", "--rates", "0",
+                                 "--method", "btplan,replan", "-o", str(tmp_path / "r.csv")])
+    assert result.exit_code == 2
+    assert "the replan baseline runs in the symbolic world only" in result.stderr
+
+
+@pytest.mark.slow
+def test_a_pybullet_sweep_runs_the_youbot_scene(tmp_path: Path) -> None:
+    pytest.importorskip("pybullet")
+    out = tmp_path / "youbot.csv"
+    result = runner.invoke(app, ["sweep", str(DOMAINS / "youbot.bt"), "--sim", "pybullet",
+                                 "--scenario", "scene", "--seeds", "1", "--rates", "0",
+                                 "--method", "btplan", "-j", "1", "-o", str(out), "-q"])
+    assert result.exit_code == 0, result.output
+    [only] = read_rows(str(out))
+    assert only["success"] and only["planner_calls"] > 0 and not only["error"]
