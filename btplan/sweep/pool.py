@@ -39,7 +39,10 @@ def _serve(conn: Connection, job: Job) -> None:
     """A worker: run what the parent sends until it sends None."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
     while True:
-        item = conn.recv()
+        try:
+            item = conn.recv()
+        except (EOFError, OSError):
+            return  # the parent is gone (killed): nobody wants the rows any more
         if item is None:
             return
         method, rate, seed = item
