@@ -110,6 +110,9 @@ def sweep(
         min=1, metavar="N", help="Tick budget per run (default: the scenario's).")] = None,
     plot: Annotated[str | None, typer.Option(
         metavar="OUT.png", help="Draw success, planning time and ticks against rate.")] = None,
+    timeout: Annotated[float | None, typer.Option(
+        metavar="SECONDS", help="Stop a run after this long (wall clock): an error row. "
+                                "Local workers only.")] = None,
     quiet: Annotated[bool, typer.Option("-q", "--quiet", help="No progress bar.")] = False,
 ) -> None:
     """Run every method on every seed at every rate; write the rows and print medians.
@@ -124,6 +127,11 @@ def sweep(
     check_methods(methods, sim.value)
     if any(m in BASELINES for m in methods):
         require_pyperplan()
+    if timeout is not None and timeout <= 0:
+        raise InputError(f"--timeout must be positive, got {timeout:g}", Span("--timeout", 1, 1))
+    if timeout is not None and ray is not None:
+        raise InputError("--timeout applies to local workers, not to --ray",
+                         Span("--timeout", 1, 1), "leave one of them out")
     output.check_output(output_path)
     job = Job(tuple(files), scenario, sim.value, max_ticks)
     prepared(job)  # bad domain files or scenarios are refused here, not in every worker
@@ -143,10 +151,10 @@ def sweep(
             if ray is not None:
                 pool.run_ray(job, runs, on_row, None if ray == LOCAL else ray,
                              jobs or None)
-            elif (jobs or os.cpu_count() or 1) == 1:
+            elif (jobs or os.cpu_count() or 1) == 1 and timeout is None:
                 pool.run_serial(job, runs, on_row)
-            else:
-                pool.run_local(job, runs, on_row, jobs or os.cpu_count() or 1)
+            else:  # a run that must be stopped needs a process of its own
+                pool.run_local(job, runs, on_row, jobs or os.cpu_count() or 1, timeout)
         except KeyboardInterrupt:
             interrupted = True
     output.write_rows(output_path, rows)

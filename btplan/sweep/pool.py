@@ -12,6 +12,7 @@ from __future__ import annotations
 import multiprocessing
 import os
 import signal
+import time
 from collections import deque
 from collections.abc import Callable, Sequence
 from multiprocessing.connection import Connection, wait
@@ -39,7 +40,10 @@ def _serve(conn: Connection, job: Job) -> None:
     """A worker: run what the parent sends until it sends None."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
     while True:
-        item = conn.recv()
+        try:
+            item = conn.recv()
+        except (EOFError, OSError):
+            return  # the parent is gone (killed): nobody wants the rows any more
         if item is None:
             return
         method, rate, seed = item
@@ -53,10 +57,16 @@ class _Worker:
         self.process.start()
         child.close()
         self.run: Run | None = None
+        self.since = 0.0
 
 
-def run_local(job: Job, runs: Sequence[Run], on_row: OnRow, jobs: int) -> None:
-    """On `jobs` worker processes, one run at a time each; a dead worker is replaced."""
+def run_local(job: Job, runs: Sequence[Run], on_row: OnRow, jobs: int,
+              timeout: float | None = None) -> None:
+    """On `jobs` worker processes, one run at a time each; a dead worker is replaced.
+
+    A run that takes longer than `timeout` seconds (wall clock) has its worker killed
+    and becomes an error row; it is not retried, since it would only time out again.
+    """
     context = multiprocessing.get_context("spawn")
     todo: deque[tuple[Run, int]] = deque((run, 1) for run in runs)
     workers: list[_Worker] = []
@@ -71,12 +81,18 @@ def run_local(job: Job, runs: Sequence[Run], on_row: OnRow, jobs: int) -> None:
                 run, attempt = todo.popleft()
                 attempts[run] = attempt
                 idle.run = run
+                idle.since = time.monotonic()
                 idle.conn.send(run)
             busy = [w for w in workers if w.run is not None]
-            ready = wait([w.conn for w in busy] + [w.process.sentinel for w in busy])
+            left = None
+            if timeout is not None:
+                left = max(0.0, min(w.since + timeout for w in busy) - time.monotonic())
+            ready = wait([w.conn for w in busy] + [w.process.sentinel for w in busy], left)
             for worker in busy:
                 if worker.conn in ready or worker.process.sentinel in ready:
                     _collect(worker, job, workers, todo, attempts, on_row)
+                elif timeout is not None and time.monotonic() - worker.since > timeout:
+                    _time_out(worker, job, workers, timeout, on_row)
     finally:
         for worker in workers:
             _stop(worker)
@@ -105,6 +121,17 @@ def _collect(worker: _Worker, job: Job, workers: list[_Worker],
         method, rate, seed = run
         on_row(empty_row(job, method, rate, seed,
                          f"WorkerDied: the worker died twice (exit code {code})"))
+
+
+def _time_out(worker: _Worker, job: Job, workers: list[_Worker], timeout: float,
+              on_row: OnRow) -> None:
+    assert worker.run is not None
+    method, rate, seed = worker.run
+    worker.process.kill()
+    worker.process.join()
+    workers.remove(worker)
+    worker.conn.close()
+    on_row(empty_row(job, method, rate, seed, f"Timeout: the run took more than {timeout:g} s"))
 
 
 def _stop(worker: _Worker) -> None:

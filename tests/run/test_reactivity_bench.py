@@ -37,7 +37,7 @@ def test_targets_compare_with_the_best_baseline_of_each_measure() -> None:
     rows += [row("repair", 0.1, s, 11, 0.010) for s in range(3)]
     [verdict] = R.verdicts(summarize(rows))
     assert verdict[:4] == ("obstacle", "0.1", "1.00", "4.00")
-    assert verdict[4] == "4.0x **missed** (target 5x)"  # 5x lower is the target from 0.1
+    assert verdict[4] == "4.00x lower **missed** (target 5x)"  # 5x lower is the target from 0.1
     assert verdict[5].endswith(" met")
     assert verdict[6] == "12 vs 10 **missed**"  # more than 10% above
 

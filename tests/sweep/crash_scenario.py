@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 import signal
+import time
 from pathlib import Path
 
 from btplan.model import Task
@@ -35,3 +36,15 @@ def _die_always(task: Task, rate: float, seed: int) -> list[Agent]:
 
 CRASH_ALWAYS = Scenario("crash-always", "the run of seed 1 kills its worker every time",
                         ("undo@p={p}",), _die_always)
+
+
+def _stall_once(task: Task, rate: float, seed: int) -> list[Agent]:
+    marker = os.environ.get("BTPLAN_TEST_CRASH_MARKER")
+    if marker and seed == 1 and not Path(marker).exists():
+        Path(marker).write_text("stalled\n")
+        time.sleep(600)
+    return []
+
+
+STALL_ONCE = Scenario("stall-once", "the run of seed 1 hangs (once)", ("undo@p={p}",),
+                      _stall_once)

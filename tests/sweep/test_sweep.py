@@ -165,3 +165,16 @@ def test_a_pybullet_sweep_runs_the_youbot_scene(tmp_path: Path) -> None:
     assert result.exit_code == 0, result.output
     [only] = read_rows(str(out))
     assert only["success"] and only["planner_calls"] > 0 and not only["error"]
+
+
+def test_a_run_past_the_timeout_becomes_an_error_row(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("BTPLAN_TEST_CRASH_MARKER", str(tmp_path / "stalled"))
+    monkeypatch.syspath_prepend(str(Path(__file__).parent))
+    out = tmp_path / "rows.csv"
+    result = runner.invoke(app, ["sweep", OBSTACLE, "--scenario", "crash_scenario:STALL_ONCE",
+                                 "--seeds", "0:3", "--rates", "0.2", "--method", "repair",
+                                 "-j", "1", "--timeout", "10", "-o", str(out), "-q"])
+    assert result.exit_code == 1  # some runs crashed
+    errors = {r["seed"]: r["error"] for r in read_rows(str(out))}
+    assert errors == {0: "", 1: "Timeout: the run took more than 10 s", 2: ""}
