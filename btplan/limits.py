@@ -73,10 +73,22 @@ would otherwise be echoed whole into the terminal."""
 MAX_ECHO = 40
 """Characters of a name, key or value quoted back in an error message."""
 
+MAX_MESSAGE = 200
+"""Characters of a message, and of its hint, that the CLI prints. Only quoted input makes
+one longer (a 3,000-character name); the middle is cut so that both ends still read."""
+
 
 def shorten(text: str, width: int = MAX_ECHO) -> str:
     """`text` cut to `width` characters, marked with '...' when cut, for quoting in a message."""
     return text if len(text) <= width else text[: max(width - 3, 1)] + "..."
+
+
+def abridge(text: str, width: int = MAX_MESSAGE) -> str:
+    """`text` with its middle cut out when longer than `width`, so the end still reads."""
+    if len(text) <= width:
+        return text
+    tail = width // 3
+    return text[: width - tail - 5] + " ... " + text[-tail:]
 
 
 def check_size(size: int, path: str) -> None:
@@ -185,9 +197,9 @@ def located(text: str, path: str, index: int, message: str,
 
 
 __all__ = [
-    "BT_BRACKETS", "EXCERPT_WIDTH", "JSON_BRACKETS", "MAX_ECHO", "MAX_INPUT_BYTES",
+    "BT_BRACKETS", "EXCERPT_WIDTH", "JSON_BRACKETS", "MAX_ECHO", "MAX_INPUT_BYTES", "MAX_MESSAGE",
     "MAX_JSON_NESTING", "MAX_NESTING", "MAX_SCENE_MAGNITUDE", "MAX_TICK", "MAX_TREE_DEPTH",
     "MAX_TYPE_DEPTH",
     "PDDL_BRACKETS", "TOML_BRACKETS", "Brackets", "check_nesting", "check_size", "excerpt",
-    "located", "shorten",
+    "abridge", "located", "shorten",
 ]

@@ -16,7 +16,7 @@ from rich.console import Console
 from rich.markup import escape
 
 from btplan.errors import BtplanError, InputError, PlanningError
-from btplan.limits import excerpt
+from btplan.limits import abridge, excerpt
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -38,8 +38,14 @@ R = TypeVar("R")
 
 
 def format_input_error(error: InputError) -> str:
-    """`file:line:col: message`, then the offending line and a caret under the column."""
-    lines = [str(error)]
+    """`file:line:col: message`, then the offending line and a caret under the column.
+
+    Message, hint and line are cut to a few hundred characters (btplan/limits.py): only
+    quoted input makes them longer, and a terminal full of it helps no one.
+    """
+    where = f"{error.span}: " if error.span else ""
+    hint = f" ({abridge(error.hint)})" if error.hint else ""
+    lines = [f"{where}{abridge(error.message)}{hint}"]
     if error.source_line is not None and error.span is not None:
         text, column = excerpt(error.source_line, error.span.column)
         lines.append(f"  {text}")
