@@ -66,6 +66,11 @@ PyBullet computes in single precision, so far beyond this a position loses whole
 centimetres, and products such as speed × tick duration must stay finite.
 """
 
+MAX_SCENE_ITEMS = 1000
+"""Most walls, cubes, regions or events (each) in a scene: PyBullet builds a body for
+each thing, and every motion is checked against all of them; the shipped scene has a
+handful."""
+
 EXCERPT_WIDTH = 100
 """Characters of the offending line shown around the caret; a one-line file of 30 KB
 would otherwise be echoed whole into the terminal."""
@@ -197,9 +202,8 @@ def located(text: str, path: str, index: int, message: str,
 
 
 __all__ = [
-    "BT_BRACKETS", "EXCERPT_WIDTH", "JSON_BRACKETS", "MAX_ECHO", "MAX_INPUT_BYTES", "MAX_MESSAGE",
-    "MAX_JSON_NESTING", "MAX_NESTING", "MAX_SCENE_MAGNITUDE", "MAX_TICK", "MAX_TREE_DEPTH",
-    "MAX_TYPE_DEPTH",
-    "PDDL_BRACKETS", "TOML_BRACKETS", "Brackets", "check_nesting", "check_size", "excerpt",
-    "abridge", "located", "shorten",
+    "BT_BRACKETS", "EXCERPT_WIDTH", "JSON_BRACKETS", "MAX_ECHO", "MAX_INPUT_BYTES",
+    "MAX_JSON_NESTING", "MAX_MESSAGE", "MAX_NESTING", "MAX_SCENE_ITEMS", "MAX_SCENE_MAGNITUDE",
+    "MAX_TICK", "MAX_TREE_DEPTH", "MAX_TYPE_DEPTH", "PDDL_BRACKETS", "TOML_BRACKETS",
+    "Brackets", "abridge", "check_nesting", "check_size", "excerpt", "located", "shorten",
 ]
