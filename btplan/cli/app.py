@@ -24,6 +24,7 @@ from typer.exceptions import TyperException
 
 from btplan.cli.help import Group
 from btplan.errors import BtplanError, InputError, Interrupted, PlanningError
+from btplan.limits import abridge
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -91,12 +92,18 @@ def main_options(
 
 
 def format_input_error(error: InputError) -> str:
-    """`file:line:col: message`, then the offending line and a caret under the column."""
-    lines = [str(error)]
-    excerpt = error.excerpt()
-    if excerpt is not None:
-        lines.append(f"  {excerpt[0]}")
-        lines.append("  " + " " * excerpt[1] + "^")
+    """`file:line:col: message`, then the offending line and a caret under the column.
+
+    Message, hint and line are cut to a few hundred characters (btplan/limits.py): only
+    quoted input makes them longer, and a terminal full of it helps no one.
+    """
+    where = f"{error.span}: " if error.span else ""
+    hint = f" ({abridge(error.hint)})" if error.hint else ""
+    lines = [f"{where}{abridge(error.message)}{hint}"]
+    shown = error.excerpt()
+    if shown is not None:
+        lines.append(f"  {shown[0]}")
+        lines.append("  " + " " * shown[1] + "^")
     return "\n".join(lines)
 
 

@@ -20,6 +20,7 @@ from btplan.lang.syntax import (
     ProblemSyntax,
     TypedSyntax,
 )
+from btplan.limits import shorten
 from btplan.model import EQUALITY, ROOT_TYPE
 
 SUPPORTED = (":strips", ":typing", ":negative-preconditions", ":equality")
@@ -82,7 +83,7 @@ def _requirements(group: Group) -> tuple[Name, ...]:
         if not isinstance(item, Word) or item.kind != "KEYWORD":
             raise item.at.error("expected a requirement such as ':strips'")
         if item.text not in SUPPORTED:
-            raise item.at.error(f"requirement '{item.text}' is not supported", FRAGMENT)
+            raise item.at.error(f"requirement '{shorten(item.text)}' is not supported", FRAGMENT)
         names.append(_name(item))
     return tuple(names)
 
@@ -147,7 +148,7 @@ def _domain(define: Group) -> DomainSyntax:
         elif key == ":action":
             action_groups.append(group)
         else:
-            raise group.items[0].at.error(f"section '{key}' is not supported", FRAGMENT)
+            raise group.items[0].at.error(f"section '{shorten(key)}' is not supported", FRAGMENT)
     constant_names = {c.name.text for c in constants}
     return DomainSyntax(
         _name(name),
@@ -190,7 +191,7 @@ def _action(group: Group, constants: set[str]) -> ActionSyntax:
         if not isinstance(key, Word) or key.kind != "KEYWORD":
             raise key.at.error("expected ':parameters', ':precondition' or ':effect'")
         if key.text not in (":parameters", ":precondition", ":effect"):
-            raise key.at.error(f"'{key.text}' is not supported in an action", FRAGMENT)
+            raise key.at.error(f"'{shorten(key.text)}' is not supported in an action", FRAGMENT)
         if index + 1 >= len(items):
             raise key.at.error(f"'{key.text}' needs a value")
         fields[key.text] = items[index + 1]
@@ -269,15 +270,15 @@ def _atom(group: Group) -> LiteralSyntax:
     if head.text in NEEDS or head.text in ("and", "not"):
         needs = NEEDS.get(head.text)
         reason = f"it needs the requirement {needs}" if needs else "it is nested too deeply"
-        raise head.at.error(f"'{head.text}' is not supported here: {reason}", FRAGMENT)
+        raise head.at.error(f"'{shorten(head.text)}' is not supported here: {reason}", FRAGMENT)
     if head.kind not in ("NAME", "SYMBOL") or (head.kind == "SYMBOL" and head.text != EQUALITY):
-        raise head.at.error(f"expected a predicate name, not '{head.text}'")
+        raise head.at.error(f"expected a predicate name, not '{shorten(head.text)}'")
     args = []
     for arg in group.items[1:]:
         if isinstance(arg, Group):
             raise arg.at.error("expected an object or a variable, not a nested list", FRAGMENT)
         if arg.kind not in ("NAME", "VARIABLE"):
-            raise arg.at.error(f"expected an object or a variable, not '{arg.text}'")
+            raise arg.at.error(f"expected an object or a variable, not '{shorten(arg.text)}'")
         args.append(Name(arg.text, arg.at))
     if head.text == EQUALITY and len(args) != 2:
         raise head.at.error("'=' compares exactly two terms")
@@ -314,7 +315,7 @@ def _problem(define: Group) -> ProblemSyntax:
                 raise group.at.error("':goal' takes one condition", "join several with (and ...)")
             goal = _literals(group.items[1], group)
         else:
-            raise group.items[0].at.error(f"section '{key}' is not supported", FRAGMENT)
+            raise group.items[0].at.error(f"section '{shorten(key)}' is not supported", FRAGMENT)
     if domain is None:
         raise define.at.error("the problem does not say its domain", "add '(:domain NAME)'")
     return ProblemSyntax(_name(name), _name(domain), tuple(objects), tuple(init), goal)

@@ -25,7 +25,7 @@ from hypothesis import HealthCheck, settings
 from typer.testing import CliRunner
 
 from btplan.cli import app
-from btplan.limits import EXCERPT_WIDTH
+from btplan.limits import EXCERPT_WIDTH, MAX_MESSAGE
 
 ROOT = Path(__file__).resolve().parents[2]
 DOMAINS = ROOT / "domains"
@@ -73,8 +73,8 @@ def _command() -> Any:
     would cost more than most of the runs under test."""
     return typer.main.get_command(app)
 
-LONGEST_MESSAGE = 600
-"""A message line names a file and says what is wrong; anything longer echoes input."""
+LONGEST_MESSAGE = 2 * MAX_MESSAGE + 200
+"""A message and its hint, with room for `error: `, the file's path, line and column."""
 _MESSAGE = re.compile(r"^(error|failed|warning): ")
 
 

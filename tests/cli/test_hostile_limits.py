@@ -13,9 +13,11 @@ from hostile import DOMAINS, GOLDEN, PICK_PLACE, YOUBOT, assert_clean, error_lin
 from btplan.limits import (
     EXCERPT_WIDTH,
     MAX_INPUT_BYTES,
+    MAX_MESSAGE,
     MAX_NESTING,
     MAX_TREE_DEPTH,
     MAX_TYPE_DEPTH,
+    abridge,
     excerpt,
     shorten,
 )
@@ -166,6 +168,23 @@ def test_the_excerpt_neutralises_terminal_controls() -> None:
 def test_echoed_values_are_shortened() -> None:
     assert shorten("x" * 1000) == "x" * 37 + "..."
     assert shorten("short") == "short"
+    cut = abridge("section '" + "x" * 3000 + "' is not supported")
+    assert len(cut) == MAX_MESSAGE and cut.endswith("' is not supported")
+    assert abridge("short") == "short"
+
+
+@pytest.mark.parametrize(("name", "text"), [
+    ("section.pddl", "(define (domain d) (:" + "x" * 3000 + "))"),
+    ("predicate.bt", "domain d { predicates { p } action A() { pre: " + "q" * 3000 + " } }"),
+])
+def test_a_message_quoting_a_huge_name_stays_short(tmp_path: Path, name: str, text: str) -> None:
+    """Found by the property tests (long profile): a 3,000-character keyword was echoed."""
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    result = invoke(["check", str(path)])
+    assert_clean(result)
+    assert result.exit_code == 2
+    assert len(result.stderr) < 2 * MAX_MESSAGE + 2 * EXCERPT_WIDTH + 200
 
 
 @pytest.mark.parametrize(("name", "text"), [

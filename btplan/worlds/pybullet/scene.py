@@ -19,6 +19,7 @@ from typing import Any
 from btplan.errors import InputError, Span
 from btplan.io import read_text
 from btplan.limits import (
+    MAX_SCENE_ITEMS,
     MAX_SCENE_MAGNITUDE,
     MAX_TICK,
     TOML_BRACKETS,
@@ -200,6 +201,9 @@ class _Reader:
         items = data.get(kind, [])
         if not isinstance(items, list):
             raise self.fail(f"write [[{kind}]] for each {kind}", kind)
+        if len(items) > MAX_SCENE_ITEMS:
+            raise self.fail(f"a scene holds at most {MAX_SCENE_ITEMS} [[{kind}]] tables, "
+                            f"not {len(items)}", f"[[{kind}]]")
         return [self.known(t, kind) for t in items]
 
     def point(self, value: object, key: str) -> Point:

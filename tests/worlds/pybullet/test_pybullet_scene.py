@@ -8,6 +8,7 @@ import pytest
 from sim_scenes import OPEN_ROOM, YOUBOT_SCENE, write_scene
 
 from btplan.errors import InputError
+from btplan.limits import MAX_SCENE_ITEMS
 from btplan.worlds.pybullet.agents import parse_literal
 from btplan.worlds.pybullet.scene import load_scene
 
@@ -121,3 +122,11 @@ def test_a_wall_has_a_positive_size(tmp_path: Path) -> None:
     wall = '\n[[wall]]\nname = "w"\ncenter = [3.0, 0.0]\nsize = [0.0, 1.0]\n'
     with pytest.raises(InputError, match="a wall's 'size' must be positive"):
         load_scene(write_scene(tmp_path, OPEN_ROOM + wall))
+
+
+def test_a_scene_holds_a_bounded_number_of_things(tmp_path: Path) -> None:
+    """Each thing becomes a PyBullet body that every motion is checked against."""
+    walls = "".join(f'\n[[wall]]\nname = "w{i}"\ncenter = [3.0, 0.0]\nsize = [0.1, 0.1]\n'
+                    for i in range(MAX_SCENE_ITEMS + 1))
+    with pytest.raises(InputError, match=f"at most {MAX_SCENE_ITEMS}"):
+        load_scene(write_scene(tmp_path, OPEN_ROOM + walls))
