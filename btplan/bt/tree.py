@@ -2,15 +2,22 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 from btplan.bt.debug import StrictWorld
 from btplan.bt.node import Node
 from btplan.bt.status import Status
 from btplan.bt.world import World
 
-if TYPE_CHECKING:
-    from btplan.bt.trace import TickRecorder
+
+class TickRecorder(Protocol):
+    """What the tree needs of a recorder (`btplan.bt.trace.TickRecorder` is one).
+
+    A protocol rather than an import, so that trace.py may import this module without
+    closing an import circle.
+    """
+
+    def tick(self, tree: BehaviorTree, world: World) -> Status: ...
 
 
 class BehaviorTree:

@@ -50,11 +50,10 @@ def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = 
     loaded = load_scene(path)
     arity = {p.name: p.arity for p in task.domain.predicates}
     agents = scene_agents(loaded.events, str(path), arity)
-    world = PyBulletWorld(task, loaded, seed=seed, gui=gui, verbose=verbose)
-    world.agents = agents
+    world = PyBulletWorld(task, loaded, seed=seed, gui=gui, verbose=verbose, agents=agents)
     if recorder is not None:
-        world.recorder = recorder
         world.on_frame = recorder
+        world.save_recording = recorder.save
     return world
 
 

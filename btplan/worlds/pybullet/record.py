@@ -9,12 +9,10 @@ from __future__ import annotations
 import os
 import tempfile
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from btplan.errors import WorldError
-
-if TYPE_CHECKING:
-    from btplan.worlds.pybullet.world import PyBulletWorld
+from btplan.worlds.pybullet.state import SceneState
 
 
 class Recorder:
@@ -27,10 +25,10 @@ class Recorder:
         self.frames: list[Any] = []
         self._ticks = 0
 
-    def __call__(self, world: PyBulletWorld) -> None:
+    def __call__(self, world: SceneState, label: str) -> None:
         self._ticks += 1
         if self._ticks % self.every == 1 or self.every == 1:
-            self.frames.append(frame(world, *self.size))
+            self.frames.append(frame(world, label, *self.size))
 
     def save(self) -> None:
         if not self.frames:
@@ -57,14 +55,13 @@ def write_bytes_atomic(path: str, data: bytes) -> None:
         raise
 
 
-def frame(world: PyBulletWorld, width: int = 480, height: int = 300) -> Any:
+def frame(world: SceneState, label: str, width: int = 480, height: int = 300) -> Any:
     """One labelled picture of the scene as a pillow image (palette mode, for GIF)."""
     from PIL import Image, ImageDraw
 
     w, h, pixels = world.sim.snapshot(width, height)
     image = Image.frombytes("RGBA", (w, h), pixels).convert("RGB")
     draw = ImageDraw.Draw(image)
-    label = f"t={world.sim_seconds:5.1f}s  {world.current}"
     draw.rectangle([0, 0, w, 18], fill=(0, 0, 0))
     draw.text((6, 3), label, fill=(255, 255, 255))
     return image.convert("P", palette=Image.Palette.ADAPTIVE)

@@ -76,11 +76,11 @@ def test_the_youbot_sequence_of_the_paper() -> None:
 
         goal, storage = world.scene.region("goal"), world.scene.region("storage")
         assert goal is not None and storage is not None
-        assert world.held is None and goal.contains(*world.location("green"))
-        assert storage.contains(*world.location("blue")) and storage.contains(*world.location("red"))
-        assert not world.present("yellow")
+        assert world.state.held is None and goal.contains(*world.state.location("green"))
+        assert storage.contains(*world.state.location("blue")) and storage.contains(*world.state.location("red"))
+        assert not world.state.present("yellow")
         assert world.check(("on", ("green", "goal")))
-        assert len(world.plan_seconds) >= 10
+        assert len(world.routes.plan_seconds) >= 10
     finally:
         world.close()
 

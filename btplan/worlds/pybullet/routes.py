@@ -1,0 +1,101 @@
+"""Named trajectories for the base: planned with OMPL, re-planned when they went stale.
+
+Built on the scene state and the samplers (the approach pose at a trajectory's end);
+the conditions, the skills and refinement use it.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+from btplan.worlds.pybullet import motion, samplers
+from btplan.worlds.pybullet.motion import Pose2
+from btplan.worlds.pybullet.paths import CHECK_FROM, Trajectory
+from btplan.worlds.pybullet.state import SceneState
+
+STEP = 0.05          # metres between waypoints of a path
+PLAN_BUDGET = 1.0    # seconds OMPL may take for a path that avoids walls only
+DETOUR_BUDGET = 0.1  # seconds for a path that also avoids the movable cubes
+
+
+class Routes:
+    """Plans and re-plans the trajectories of `state`; keeps OMPL's timings for the stats."""
+
+    def __init__(self, state: SceneState) -> None:
+        self.state = state
+        self.plan_seconds: list[float] = []
+        self._counter = itertools.count(1)
+        self._no_detour: set[tuple[object, ...]] = set()
+
+    def new_trajectory(self, target: str) -> str:
+        name = f"traj{next(self._counter)}"
+        self.state.trajectories[name] = Trajectory(name, target)
+        self.prepare(name)
+        return name
+
+    def sample_pose(self, avoid: Trajectory | None) -> str | None:
+        """Reserve a spot off `avoid`'s path to put an obstacle, and name it."""
+        spot = samplers.aside_spot(self.state, avoid)
+        if spot is None:
+            return None
+        name = f"pose{len(self.state.poses) + 1}"
+        self.state.poses[name] = spot
+        return name
+
+    def free(self, name: str) -> bool:
+        traj = self.state.trajectories.get(name)
+        if traj is None:
+            return False
+        self.prepare(name)
+        return not self.state.blockers(traj)
+
+    def prepare(self, name: str, slack: float = CHECK_FROM) -> None:
+        """Plan the trajectory again if it was planned from elsewhere or its target moved.
+
+        `slack` is how far from the path's start the robot may be: small when the robot is
+        about to drive the path, larger when the path is only checked, which saves most
+        re-planning while the robot drives elsewhere.
+        """
+        state = self.state
+        traj = state.trajectories[name]
+        if traj.target in state.on_floor and not state.present(traj.target):
+            return  # a cube taken out of the scene: keep the old path, nothing to reach
+        goal = samplers.approach_pose(state, traj.target) or \
+            samplers.approach_pose(state, traj.target, avoid_cubes=False)
+        if not traj.stale(state.base, goal, state.layout(), slack) or goal is None:
+            return
+        traj.path, traj.goal = self._plan(traj.target, goal), goal
+        traj.layout = state.layout()
+        traj.plans += 1
+
+    def _plan(self, target: str, goal: Pose2) -> tuple[Pose2, ...]:
+        state = self.state
+        start = state.base
+        walls_only = self._solve(start, goal, [], PLAN_BUDGET)
+        if walls_only is None:
+            return ()
+        path = walls_only
+        cubes = state.floor_cubes(target, state.held)
+        if any(state.on_path(c, path, 0) for c in cubes):
+            layout = (target, tuple((c, state.on_floor[c]) for c in cubes),
+                      round(start[0], 1), round(start[1], 1))
+            if layout not in self._no_detour:
+                detour = self._solve(start, goal, cubes, DETOUR_BUDGET)
+                if detour is None:
+                    self._no_detour.add(layout)
+                else:
+                    path = detour
+        return path
+
+    def _solve(self, start: Pose2, goal: Pose2, cubes: list[str], budget: float
+               ) -> tuple[Pose2, ...] | None:
+        sim = self.state.sim
+
+        def valid(x: float, y: float) -> bool:
+            return sim.base_free(x, y, cubes)
+
+        result = motion.plan_se2(start, goal, valid, self.state.scene.bounds, budget, STEP)
+        if result is None:
+            return None
+        self.plan_seconds.append(result.seconds)
+        return result.path
