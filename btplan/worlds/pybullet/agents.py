@@ -144,6 +144,6 @@ def apply(world: SceneState, event: Event) -> str:
         world.put(cube, None)
         return f"{event.name}: {cube} removed"
     if world.held == cube:
-        world.put(cube, world.sim.gripper_point())
+        world.sim.robot.slip()
         return f"{event.name}: {cube} slipped from the gripper"
     return f"{event.name}: {cube} was not in the gripper"

@@ -24,11 +24,14 @@ class Conditions:
         state = self.state
         name, args = key
         if name == "near":
-            return state.is_near(args[0])
+            return args[0] == state.clearing_now or state.is_near(args[0])
         if name == "holding":
-            return state.held == args[0] and state.held != state.clearing_now
+            return args[0] != state.clearing_now and state.lifted(args[0])
         if name == "hand_empty":
-            return state.held is None or state.held == state.clearing_now
+            # The complement of holding: fingers closing on a cube still on the floor
+            # are not holding it yet, and the hand is not yet taken.
+            held = state.held
+            return held is None or held == state.clearing_now or not state.lifted(held)
         if name == "on":
             return state.on(args[0], args[1])
         if name == "free":
@@ -47,15 +50,20 @@ class Conditions:
         found: set[Atom] = set(self.assumed)
         locations = [*state.cube_names, *(r.name for r in state.scene.regions), *sorted(state.poses)]
         found.update(Atom("near", (n,)) for n in locations if state.is_near(n))
-        found.add(Atom("hand_empty", ()) if self.check(("hand_empty", ())) else
-                  Atom("holding", (str(state.held),)))
+        held = state.held
+        if held is None or held == state.clearing_now or not state.lifted(held):
+            found.add(Atom("hand_empty", ()))
+        else:
+            found.add(Atom("holding", (held,)))
         found.update(Atom("on", (c, p)) for c in state.cube_names for p in locations
                      if state.on(c, p))
         for name in sorted(state.trajectories):
             traj = state.trajectories[name]
             found.add(Atom("route", (traj.target, name)))
             if traj.stale(state.base, traj.goal, state.layout()) or not state.present(traj.target):
-                continue  # not measured without planning again; check(free(t)) does that
-            if not state.blockers(traj):
+                free = self.routes.last_free.get(name, False)  # check(free(t)) measures it
+            else:
+                free = self.routes.last_free[name] = not state.blockers(traj)
+            if free:
                 found.add(Atom("free", (name,)))
         return frozenset(found)

@@ -28,7 +28,7 @@ def refine_values(routes: Routes, template: ActionTemplate, binding: Mapping[str
     if traj_name is not None:
         traj = world.trajectories[traj_name]
         routes.prepare(traj_name)
-        found = sorted(c for c in world.blockers(traj) if c in world.on_floor)
+        found = sorted(c for c in world.blockers(traj) if c in world.sim.cubes)
         allowed = set(world.task.objects_of(parameter.type))
         found = [c for c in found if c in allowed]
         traj.clearing.update(found)

@@ -26,6 +26,9 @@ class Routes:
         self.plan_seconds: list[float] = []
         self._counter = itertools.count(1)
         self._no_detour: set[tuple[object, ...]] = set()
+        self.last_free: dict[str, bool] = {}
+        """What `free(t)` was when last measured: the facts report it for a path not
+        measured now (planned from elsewhere), so that they do not flicker as the robot moves."""
 
     def new_trajectory(self, target: str) -> str:
         name = f"traj{next(self._counter)}"
@@ -47,7 +50,8 @@ class Routes:
         if traj is None:
             return False
         self.prepare(name)
-        return not self.state.blockers(traj)
+        self.last_free[name] = not self.state.blockers(traj)
+        return self.last_free[name]
 
     def prepare(self, name: str, slack: float = CHECK_FROM) -> None:
         """Plan the trajectory again if it was planned from elsewhere or its target moved.
@@ -58,7 +62,7 @@ class Routes:
         """
         state = self.state
         traj = state.trajectories[name]
-        if traj.target in state.on_floor and not state.present(traj.target):
+        if traj.target in state.sim.cubes and not state.present(traj.target):
             return  # a cube taken out of the scene: keep the old path, nothing to reach
         goal = samplers.approach_pose(state, traj.target) or \
             samplers.approach_pose(state, traj.target, avoid_cubes=False)
@@ -77,7 +81,8 @@ class Routes:
         path = walls_only
         cubes = state.floor_cubes(target, state.held)
         if any(state.on_path(c, path, 0) for c in cubes):
-            layout = (target, tuple((c, state.on_floor[c]) for c in cubes),
+            layout = (target, tuple((c, tuple(round(v, 2) for v in state.location(c)))
+                                    for c in cubes),
                       round(start[0], 1), round(start[1], 1))
             if layout not in self._no_detour:
                 detour = self._solve(start, goal, cubes, DETOUR_BUDGET)

@@ -15,6 +15,8 @@ from btplan.worlds.pybullet.scene import Point
 from btplan.worlds.pybullet.state import SceneState
 
 GRID = 0.25  # metres between candidate placement poses
+ARM_NEAR, ARM_FAR = 0.45, 0.68
+"""Distances from the base's centre at which the arm reaches the floor (a ring in front)."""
 
 
 def approach_pose(world: SceneState, name: str, avoid_cubes: bool = True) -> Pose2 | None:
@@ -39,7 +41,7 @@ def place_spot(world: SceneState, place: str) -> Point | None:
     cubes = world.floor_cubes(world.held)
     spots = [q for q in grid(region.low, region.high, 0.15)
              if region.contains(*q, margin=0.1) and world.sim.cube_fits(q[0], q[1], cubes)]
-    reach = [q for q in spots if distance(q, world.base) <= world.scene.near]
+    reach = [q for q in spots if ARM_NEAR <= distance(q, world.base) <= ARM_FAR]
     return min(reach or spots, key=lambda q: (round(distance(q, world.base), 3), q), default=None)
 
 
@@ -63,7 +65,9 @@ def aside_spot(world: SceneState, avoid: Trajectory | None) -> Point | None:
     """A spot to put an obstacle: in an `aside` region if the scene has one, off the path."""
     regions = [r for r in world.scene.regions if r.aside]
     x0, x1, y0, y1 = world.scene.bounds
-    areas = [(r.low, r.high) for r in regions] or [((x0, y0), (x1, y1))]
+    inset = 0.1  # a cube put down by a real hand lands within a few millimetres of the spot
+    areas = [((r.low[0] + inset, r.low[1] + inset), (r.high[0] - inset, r.high[1] - inset))
+             for r in regions] or [((x0, y0), (x1, y1))]
     keep = world.scene.robot_radius + world.scene.cube_size + 0.1
     cubes = world.floor_cubes(world.held)
     others = [r for r in world.scene.regions if not r.aside]

@@ -91,8 +91,8 @@ class Scene:
     tick_seconds: float = 0.1
     speed: float = 1.0
     robot_radius: float = 0.4
-    cube_size: float = 0.12
-    near: float = 0.75
+    cube_size: float = 0.05
+    near: float = 0.7
 
     def region(self, name: str) -> Region | None:
         return next((r for r in self.regions if r.name == name), None)
@@ -216,8 +216,8 @@ class _Reader:
             tick_seconds=self.scalar(world, "tick_seconds", 0.1, least=0.001),
             speed=self.scalar(world, "speed", 1.0, least=0.01),
             robot_radius=self.scalar(robot, "radius", 0.4, least=0.05),
-            cube_size=self.scalar(world, "cube_size", 0.12, least=0.01),
-            near=self.scalar(robot, "near", 0.75, least=0.05),
+            cube_size=self.scalar(world, "cube_size", 0.05, least=0.01),
+            near=self.scalar(robot, "near", 0.7, least=0.05),
         )
         self.check_names(scene)
         return scene

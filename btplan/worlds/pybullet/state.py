@@ -7,30 +7,64 @@ here knows about them: the import graph of the backend has no circle.
 
 from __future__ import annotations
 
+import math
+
 from btplan.errors import WorldError
 from btplan.model import Task
 from btplan.worlds.pybullet.geometry import clearance, distance
 from btplan.worlds.pybullet.motion import Pose2
 from btplan.worlds.pybullet.paths import Trajectory
 from btplan.worlds.pybullet.scene import Point, Scene
-from btplan.worlds.pybullet.sim import Sim
+from btplan.worlds.pybullet.sim import HZ, Sim
+
+
+REST_HEIGHT = 0.01   # metres above its resting height a cube on the floor may be
+REST_SPEED = 0.05    # metres per second: slower than this, a cube is at rest
+LIFTED = 0.004       # metres above its resting height a held cube must be
 
 
 class SceneState:
-    """The robot's base, the cubes, the named trajectories and poses, and the PyBullet client."""
+    """The robot, the cubes, the named trajectories and poses, and the PyBullet client.
+
+    Where a cube is and whether the robot holds it are read from the simulation each
+    time they are asked; the only bookkeeping is what the planner named (trajectories,
+    poses) and how often the robot handled a cube (which makes planned paths stale).
+    """
 
     def __init__(self, task: Task, scene: Scene, gui: bool = False) -> None:
         self.task, self.scene = task, scene
         self.cube_names = tuple(sorted(c.name for c in scene.cubes))
-        self.on_floor: dict[str, Point | None] = {c.name: c.at for c in scene.cubes}
-        self.held: str | None = None
         self.clearing_now: str | None = None  # the cube a running ClearPath carries
         self.handled = 0  # cubes the robot grasped or put down so far
-        self.base: Pose2 = scene.start
         self.trajectories: dict[str, Trajectory] = {}
         self.poses: dict[str, Point] = {}
         self.check_objects()
         self.sim = Sim(scene, gui)  # after the checks: a refused scene leaves no connection open
+
+    @property
+    def base(self) -> Pose2:
+        return self.sim.pose
+
+    @property
+    def seconds(self) -> float:
+        """Simulated time: physics steps so far."""
+        return self.sim.steps / HZ
+
+    @property
+    def held(self) -> str | None:
+        """The cube between the closed fingers, both touching it (from the scene, not a flag)."""
+        robot = self.sim.robot
+        tip = robot.tip()
+        for name in self.cube_names:
+            x, y, z = self.sim.cube_position(name)
+            if math.dist((x, y, z), tip) < 0.08 and robot.holds(self.sim.cubes[name]):
+                return name
+        return None
+
+    def lifted(self, cube: str) -> bool:
+        """In the hand and off the floor: what Pick achieves and `holding(c)` means."""
+        z = self.sim.cube_position(cube)[2]
+        return z > self.scene.cube_size / 2 + LIFTED and self.held == cube
 
     def check_objects(self) -> None:
         known = set(self.cube_names) | {r.name for r in self.scene.regions}
@@ -43,21 +77,28 @@ class SceneState:
     def type_of(self, wanted: str) -> str:
         return wanted if wanted in self.task.domain.type_parents else "object"
 
-    def present(self, cube: str) -> bool:
-        return self.held == cube or self.on_floor.get(cube) is not None
+    def present(self, name: str) -> bool:
+        """A cube in the scene (not parked away); any other location is always there."""
+        return name not in self.sim.cubes or self.sim.cube_position(name)[2] > -1.0
 
     def floor_cubes(self, *excluded: str | None) -> list[str]:
-        return [c for c in self.cube_names if self.on_floor.get(c) is not None and c not in excluded]
+        """Cubes in the scene and not in the hand, except `excluded`."""
+        skip = {*excluded, self.held}
+        return [c for c in self.cube_names if c not in skip and self.present(c)]
+
+    def resting(self, cube: str) -> bool:
+        """On the floor and still: where a put-down cube came to rest."""
+        z = self.sim.cube_position(cube)[2]
+        return (-1.0 < z <= self.scene.cube_size / 2 + REST_HEIGHT
+                and self.sim.cube_speed(cube) < REST_SPEED)
 
     def location(self, name: str) -> Point:
         """Where a location is now: a cube's position, a region's centre or a sampled pose."""
-        if name in self.on_floor:
-            if self.held == name:
-                return self.sim.gripper_point()
-            at = self.on_floor[name]
-            if at is None:
+        if name in self.sim.cubes:
+            x, y, z = self.sim.cube_position(name)
+            if z < -1.0:
                 raise WorldError(f"cube {name!r} is not in the scene")
-            return at
+            return (x, y)
         region = self.scene.region(name)
         if region is not None:
             return region.center
@@ -66,14 +107,15 @@ class SceneState:
         raise WorldError(f"{name!r} is not a cube, region or pose of this scene")
 
     def is_near(self, name: str) -> bool:
-        if name in self.on_floor and not self.present(name):
+        if name in self.sim.cubes and not self.present(name):
             return False
         return distance(self.base, self.location(name)) <= self.scene.near
 
     def on(self, cube: str, place: str) -> bool:
-        at = self.on_floor.get(cube)
-        if at is None:
+        """`cube` came to rest inside region `place`, or at pose `place`."""
+        if not self.resting(cube):
             return False
+        at = self.location(cube)
         region = self.scene.region(place)
         if region is not None:
             return region.contains(*at)
@@ -82,29 +124,17 @@ class SceneState:
         return False
 
     def move_base(self, pose: Pose2) -> None:
-        self.base = pose
-        self.sim.set_robot(pose, self.held)
+        self.sim.set_robot(pose)
 
-    def grasp(self, cube: str) -> None:
+    def released(self, cube: str) -> None:
+        """A cube the robot put down off a path no longer blocks it once out of the hand."""
         self.handled += 1
-        self.held = cube
-        self.on_floor[cube] = None
-        self.sim.set_robot(self.base, cube)
-
-    def release(self, spot: Point) -> None:
-        """Put the held cube down; obstacles put off a path stop blocking it."""
-        cube = self.held
-        if cube is None:
-            return
-        self.handled += 1
-        self.held = None
-        self.put(cube, spot)
+        for traj in self.trajectories.values():
+            if cube in traj.clearing and not self.on_path(cube, traj.path, 0):
+                traj.clearing.discard(cube)
 
     def put(self, cube: str, spot: Point | None) -> None:
-        """Set a cube on the floor (None takes it out of the scene); agents use this too."""
-        if self.held == cube:
-            self.held = None
-        self.on_floor[cube] = spot
+        """Teleport a cube to the floor (None takes it out of the scene): tests and events."""
         self.sim.place_cube(cube, spot)
         if spot is not None:
             for traj in self.trajectories.values():
@@ -123,9 +153,9 @@ class SceneState:
         return (self.held, self.handled)
 
     def on_path(self, cube: str, path: tuple[Pose2, ...], start: int) -> bool:
-        at = self.on_floor.get(cube)
-        if at is None or not path:
+        if not path or not self.present(cube):
             return False
+        at = self.location(cube)
         reach = self.scene.robot_radius + self.scene.cube_size
         rest = path[start:]
         if clearance(at, rest) > reach:
@@ -134,10 +164,11 @@ class SceneState:
 
     def path_blockers(self, traj: Trajectory, start: int = 0) -> set[str]:
         """Cubes on the floor on the rest of the path, and cleared obstacles still in hand."""
-        found = {c for c in self.floor_cubes(traj.target, self.held)
+        held = self.held
+        found = {c for c in self.floor_cubes(traj.target, held)
                  if self.on_path(c, traj.path, start)}
-        if self.held is not None and self.held in traj.clearing:
-            found.add(self.held)
+        if held is not None and held in traj.clearing:
+            found.add(held)
         return found
 
     def blockers(self, traj: Trajectory) -> set[str]:

@@ -20,7 +20,8 @@ from btplan.worlds.pybullet.conditions import Conditions, Key
 from btplan.worlds.pybullet.refine import refine_values
 from btplan.worlds.pybullet.routes import Routes
 from btplan.worlds.pybullet.scene import Scene
-from btplan.worlds.pybullet.skills import ClearPath, MoveTo, Pick, Release, Skill
+from btplan.worlds.pybullet.arm import Timings
+from btplan.worlds.pybullet.skills import ClearPath, Scripted, Skill, move_to, pick, put_down
 from btplan.worlds.pybullet.state import SceneState
 
 Frame = Callable[[SceneState, str], None]
@@ -43,6 +44,7 @@ class PyBulletWorld:
                             if any(x not in scene_names for x in a.args))
         self.conditions = Conditions(self.routes, assumed)
         self.running: dict[Key, Skill] = {}
+        self.timings = Timings()
         # Logs of grounded actions, as every world keeps them (traces, --plan-out, agents).
         self.executed: list[GroundAction] = []
         self.started: list[GroundAction] = []
@@ -58,7 +60,8 @@ class PyBulletWorld:
 
     @property
     def sim_seconds(self) -> float:
-        return self.action_ticks * self.scene.tick_seconds
+        """Simulated time: the physics steps taken so far."""
+        return self.state.seconds
 
     # --- conditions ----------------------------------------------------------------------
 
@@ -111,20 +114,24 @@ class PyBulletWorld:
 
     def _skill(self, key: Key) -> Skill | None:
         name, args = key
-        state = self.state
+        state, timings = self.state, self.timings
+
+        def run(script: object) -> Skill:
+            return Scripted(state, timings, script)  # type: ignore[arg-type]
+
         if name == "MoveTo" and len(args) == 2 and args[1] in state.trajectories:
-            return MoveTo(self.routes, args[0], args[1])
+            return run(move_to(self.routes, timings, args[0], args[1]))
         if name == "Pick" and len(args) == 1:
-            return Pick(state, args[0])
+            return run(pick(state, timings, args[0]))
         if name == "Place" and len(args) == 2:
             spot = samplers.place_spot(state, args[1]) if state.is_near(args[1]) else None
-            return Release(state, args[0], spot)
+            return run(put_down(state, timings, args[0], spot, args[1]))
         if name == "ClearPath" and len(args) == 3 and args[1] in state.poses:
             if state.held is not None or not state.is_near(args[0]):
                 return None
-            return ClearPath(self.routes, args[0], args[1])
+            return ClearPath(self.routes, timings, args[0], args[1])
         if name == "Drop" and len(args) == 1:
-            return Release(state, args[0], samplers.drop_spot(state), ticks=1)
+            return run(put_down(state, timings, args[0], samplers.drop_spot(state), None))
         if name in ("MoveTo", "Pick", "Place", "ClearPath", "Drop"):
             return None
         raise WorldError(f"the PyBullet world has no skill for the action {name!r}")
