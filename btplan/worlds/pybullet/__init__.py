@@ -33,7 +33,7 @@ def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = 
 
     try:
         with quiet_stdout((1, 2)):
-            for module in ("pybullet", "ompl", "PIL"):
+            for module in ("pybullet", "ompl", "PIL", *(("imageio_ffmpeg",) if record else ())):
                 importlib.import_module(module)
     except ImportError as error:
         raise WorldError(f"the PyBullet backend needs the 'sim' extra ({error.name} is "

@@ -14,6 +14,7 @@ from difflib import get_close_matches
 from pathlib import Path
 from btplan.errors import InputError, Span
 from btplan.worlds.agents import Disturbance
+from btplan.worlds.pybullet.hand import AgentHand
 from btplan.worlds.pybullet.scene import Event
 from btplan.worlds.pybullet.state import SceneState
 
@@ -45,7 +46,8 @@ class ScriptedEvent:
     due: int | None = None
     done: bool = False
 
-    def act(self, world: SceneState, check: Check, tick: int) -> list[str]:
+    def act(self, world: SceneState, hand: AgentHand | None, check: Check,
+            tick: int) -> list[str]:
         """Fire the event when it is due; returns what happened, in words."""
         if self.done:
             return []
@@ -54,7 +56,7 @@ class ScriptedEvent:
         if self.due is None or tick < self.due:
             return []
         self.done = True
-        return [apply(world, self.event)]
+        return [apply(world, hand, self.event)]
 
     def _due(self, check: Check, tick: int) -> int | None:
         if self.event.tick is not None:
@@ -83,16 +85,22 @@ class SceneAgents:
     name: str = "scene"
     state: SceneState | None = None
     check: Check | None = None
+    hand: AgentHand | None = None
 
     def bind(self, state: SceneState, check: Check) -> None:
         self.state, self.check = state, check
+        if any(e.event.do in ("move", "remove") for e in self.events):
+            self.hand = AgentHand(state)
 
     def act(self, world: object, tick: int) -> list[Disturbance]:
         if self.state is None or self.check is None:
             return []
         state, check = self.state, self.check
         happened = [Disturbance(tick, self.name, text, "scene")
-                    for e in self.events for text in e.act(state, check, tick)]
+                    for e in self.events for text in e.act(state, self.hand, check, tick)]
+        if self.hand is not None:
+            happened += [Disturbance(tick, self.name, text, "scene")
+                         for text in self.hand.advance()]
         self.log.extend(happened)
         return happened
 
@@ -134,16 +142,18 @@ def _locate(lines: list[str], path: str, text: str) -> tuple[Span, str | None]:
     return Span(path, 1, 1), None
 
 
-def apply(world: SceneState, event: Event) -> str:
-    """Carry out one event on the world and describe it."""
+def apply(world: SceneState, hand: AgentHand | None, event: Event) -> str:
+    """Carry out one event on the world (or start it, for the hand) and describe it."""
     cube = event.cube
-    if event.do == "move":
+    if event.do == "teleport":
         world.put(cube, event.to)
-        return f"{event.name}: {cube} moved to {event.to}"
-    if event.do == "remove":
-        world.put(cube, None)
-        return f"{event.name}: {cube} removed"
+        return f"{event.name}: {cube} teleported to {event.to}"
+    if event.do in ("move", "remove") and hand is not None:
+        hand.take(event.name, cube, event.to if event.do == "move" else None)
+        where = f"to {event.to}" if event.do == "move" else "away"
+        return f"{event.name}: the agent's hand takes {cube} {where}"
     if world.held == cube:
         world.sim.robot.slip()
+        world.sim.moved()
         return f"{event.name}: {cube} slipped from the gripper"
     return f"{event.name}: {cube} was not in the gripper"

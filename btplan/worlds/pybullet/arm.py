@@ -38,6 +38,7 @@ class Timings:
         self.ik = 0.0
         self.arm_planning = 0.0
         self.ompl_solves = 0
+        self.ompl = 0.0
 
 
 def obstacles(state: SceneState, *ignored: str | None) -> list[int]:
@@ -73,6 +74,7 @@ def plan_arm(state: SceneState, timings: Timings, goal: Q, *ignored: str | None
             return [start, goal]
         timings.ompl_solves += 1
         plan = motion.plan_joints(start, goal, free, LOWER, UPPER, ARM_BUDGET)
+        timings.ompl += plan.seconds if plan is not None else ARM_BUDGET
         return None if plan is None else list(plan.path)
     finally:
         timings.arm_planning += time.perf_counter() - began

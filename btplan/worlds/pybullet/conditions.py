@@ -49,7 +49,8 @@ class Conditions:
         state = self.state
         found: set[Atom] = set(self.assumed)
         locations = [*state.cube_names, *(r.name for r in state.scene.regions), *sorted(state.poses)]
-        found.update(Atom("near", (n,)) for n in locations if state.is_near(n))
+        found.update(Atom("near", (n,)) for n in locations
+                     if n == state.clearing_now or state.is_near(n))
         held = state.held
         if held is None or held == state.clearing_now or not state.lifted(held):
             found.add(Atom("hand_empty", ()))

@@ -170,7 +170,7 @@ def plan_joints(
 
     setup.setStateValidityChecker(checker)
     info = setup.getSpaceInformation()
-    info.setStateValidityCheckingResolution(0.01)
+    info.setStateValidityCheckingResolution(0.002)  # a fraction of the space: ~0.02 rad
     s, g = space.allocState(), space.allocState()
     for i in range(n):
         s[i], g[i] = start[i], goal[i]

@@ -43,17 +43,22 @@ DOWN = (math.pi, 0.0, 0.0)          # roll-pitch-yaw of a hand pointing at the f
 class Robot:
     """The Husky and the Panda in one PyBullet client; see the module docstring."""
 
-    def __init__(self, p: Any, client: int) -> None:
+    def __init__(self, p: Any, client: int, floor: int) -> None:
         self.p, self.client = p, client
         self.husky = int(p.loadURDF("husky/husky.urdf", [0, 0, BASE_Z], globalScaling=HUSKY_SCALE,
                                     useFixedBase=True, physicsClientId=client))
+        # No self-collision: IK with a rest pose keeps the arm clear of itself, and checking
+        # it on every physics step would cost a third of the step.
         self.arm = int(p.loadURDF("franka_panda/panda.urdf", list(MOUNT), useFixedBase=True,
-                                  flags=p.URDF_USE_SELF_COLLISION_EXCLUDE_ALL_PARENTS,
                                   physicsClientId=client))
         for link in range(-1, p.getNumJoints(self.husky, physicsClientId=client)):
             for arm_link in range(-1, p.getNumJoints(self.arm, physicsClientId=client)):
                 p.setCollisionFilterPair(self.husky, self.arm, link, arm_link, 0,
                                          physicsClientId=client)
+        for link in range(-1, p.getNumJoints(self.husky, physicsClientId=client)):
+            # The base is moved kinematically: its wheels resting in the floor would only
+            # add contacts for the solver. It still collides with the cubes.
+            p.setCollisionFilterPair(self.husky, floor, link, -1, 0, physicsClientId=client)
         for finger in FINGERS:
             p.changeDynamics(self.arm, finger, lateralFriction=1.5, spinningFriction=0.01,
                              physicsClientId=client)
@@ -209,8 +214,10 @@ class Robot:
         # constraint would let the fingers work their way into the cube or pry it open.
         self._collide(body, False)
         p = self.p
-        where = [max(0.0, s[0] - 0.002) for s in p.getJointStates(self.arm, list(FINGERS),
-                                                                  physicsClientId=self.client)]
+        # Exactly where they are: pressed into the cube, they would pop it away when the
+        # contacts are switched back on at release.
+        where = [s[0] for s in p.getJointStates(self.arm, list(FINGERS),
+                                                physicsClientId=self.client)]
         p.setJointMotorControlArray(self.arm, list(FINGERS), p.POSITION_CONTROL,
                                     targetPositions=where, forces=[FINGER_FORCE] * 2,
                                     physicsClientId=self.client)

@@ -63,8 +63,9 @@ class Event:
 
     It fires at `tick`, or `delay` ticks after the `count`-th time the literal `when`
     (an atom such as `holding(green)`, optionally prefixed by `not`) becomes true.
-    `do` is `move` (put `cube` at `to`), `remove` (take it out of the scene) or `slip`
-    (the cube falls out of the gripper).
+    `do` is `move` (an agent's hand carries `cube` to `to` and drops it there), `remove`
+    (the hand carries it out of the scene), `slip` (the robot's grip fails and the cube
+    falls) or `teleport` (`cube` jumps to `to`, or out of the scene without `to`: tests).
     """
 
     name: str
@@ -99,7 +100,7 @@ class Scene:
 
 
 _TOML_AT = re.compile(r"\(at line (\d+), column (\d+)\)")
-DO = ("move", "remove", "slip")
+DO = ("move", "remove", "slip", "teleport")
 KEYS: dict[str, tuple[str, ...]] = {
     "": ("world", "robot", "wall", "cube", "region", "event"),
     "world": ("bounds", "tick_seconds", "speed", "cube_size"),

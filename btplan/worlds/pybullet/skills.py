@@ -166,8 +166,11 @@ def put_down(state: SceneState, timings: Timings, cube: str, spot: Point | None,
     yield from arm.follow(state, [robot.joints(), at])
 
     def done() -> bool:
-        return state.resting(cube) and math.dist(state.location(cube), spot) <= 0.1 and (
-            place is None or state.on(cube, place))
+        # Place achieves on(c, r); Drop and the put-down of ClearPath achieve an empty hand
+        # (and a path the cube no longer blocks): done as soon as the cube has left the hand.
+        if place is not None:
+            return state.on(cube, place)
+        return state.held != cube
 
     # Open, lift the hand clear, wait for the cube to settle: done as soon as the cube
     # rests where it was put (the postcondition), as for Pick. The next skill folds the arm.

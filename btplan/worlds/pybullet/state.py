@@ -19,7 +19,7 @@ from btplan.worlds.pybullet.sim import HZ, Sim
 
 
 REST_HEIGHT = 0.01   # metres above its resting height a cube on the floor may be
-REST_SPEED = 0.05    # metres per second: slower than this, a cube is at rest
+REST_SPEED = 0.25    # m/s: slower than this, a cube on the floor has landed (it may still settle)
 LIFTED = 0.004       # metres above its resting height a held cube must be
 
 
@@ -36,6 +36,7 @@ class SceneState:
         self.cube_names = tuple(sorted(c.name for c in scene.cubes))
         self.clearing_now: str | None = None  # the cube a running ClearPath carries
         self.handled = 0  # cubes the robot grasped or put down so far
+        self.carried: set[str] = set()  # cubes in an external agent's hand, out of reach
         self.trajectories: dict[str, Trajectory] = {}
         self.poses: dict[str, Point] = {}
         self.check_objects()
@@ -53,13 +54,15 @@ class SceneState:
     @property
     def held(self) -> str | None:
         """The cube between the closed fingers, both touching it (from the scene, not a flag)."""
-        robot = self.sim.robot
-        tip = robot.tip()
-        for name in self.cube_names:
-            x, y, z = self.sim.cube_position(name)
-            if math.dist((x, y, z), tip) < 0.08 and robot.holds(self.sim.cubes[name]):
-                return name
-        return None
+        memo = self.sim.memo
+        if "held" not in memo:
+            robot = self.sim.robot
+            tip = robot.tip()
+            memo["held"] = next((name for name in self.cube_names
+                                 if math.dist(self.sim.cube_position(name), tip) < 0.08
+                                 and robot.holds(self.sim.cubes[name])), None)
+        held = memo["held"]
+        return held if isinstance(held, str) else None
 
     def lifted(self, cube: str) -> bool:
         """In the hand and off the floor: what Pick achieves and `holding(c)` means."""
@@ -78,8 +81,10 @@ class SceneState:
         return wanted if wanted in self.task.domain.type_parents else "object"
 
     def present(self, name: str) -> bool:
-        """A cube in the scene (not parked away); any other location is always there."""
-        return name not in self.sim.cubes or self.sim.cube_position(name)[2] > -1.0
+        """A cube in the scene and not in an agent's hand; any other location is always there."""
+        if name not in self.sim.cubes:
+            return True
+        return name not in self.carried and self.sim.cube_position(name)[2] > -1.0
 
     def floor_cubes(self, *excluded: str | None) -> list[str]:
         """Cubes in the scene and not in the hand, except `excluded`."""

@@ -162,6 +162,12 @@ class PyBulletWorld:
             "ompl_ms_max": round(1000 * max(seconds, default=0.0), 2),
             "moves_started": moves,
             "ompl_ms_per_move": round(1000 * total / max(1, moves), 2),
+            "physics_steps": self.state.sim.steps,
+            "physics_seconds": round(self.state.sim.physics_seconds, 3),
+            "ik_seconds": round(self.timings.ik, 3),
+            "arm_planning_seconds": round(self.timings.arm_planning, 3),
+            "arm_ompl_solves": self.timings.ompl_solves,
+            "arm_ompl_seconds": round(self.timings.ompl, 3),
         }
 
     def scene_agents(self) -> list[SceneAgents]:

@@ -135,18 +135,33 @@ def test_record_writes_a_gif_with_the_current_action_on_each_frame(tmp_path: Pat
     finally:
         world.close()
     with Image.open(movie) as image:
-        assert image.format == "GIF" and image.size == (480, 300)
-        assert image.n_frames == 4  # one frame every third action tick
+        assert image.format == "GIF" and image.size == (640, 400)
+        assert image.n_frames == 6  # one frame every second action tick
         first = image.convert("RGB")
         # The label bar is drawn on top: black with white text.
-        assert first.getpixel((300, 2)) == (0, 0, 0)
-        assert any(first.getpixel((x, 9)) != (0, 0, 0) for x in range(6, 120))
+        assert first.getpixel((400, 2)) == (0, 0, 0)
+        assert any(first.getpixel((x, 10)) != (0, 0, 0) for x in range(6, 120))
+
+
+def test_record_writes_an_mp4_with_the_encoder_of_the_sim_extra(tmp_path: Path) -> None:
+    movie = tmp_path / "run.mp4"
+    world = open_world(TASK, write_scene(tmp_path), seed=3, record=str(movie))
+    try:
+        tree = BehaviorTree(figure7_tree(trajectory_to(world, "green"), trajectory_to(world, "goal")))
+        for _ in range(6):
+            tree.tick(world)
+        assert not movie.exists()  # written next to it, renamed at the end
+    finally:
+        world.close()
+    data = movie.read_bytes()
+    assert data[4:8] == b"ftyp" and len(data) > 1000
+    assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".btplan-")] == []
 
 
 def test_record_refuses_formats_it_cannot_write(tmp_path: Path) -> None:
     from btplan.errors import WorldError
 
-    with pytest.raises(WorldError, match="only .gif"):
+    with pytest.raises(WorldError, match="use a .mp4 or .gif"):
         open_world(TASK, write_scene(tmp_path), record=str(tmp_path / "run.avi"))
 
 

@@ -36,7 +36,7 @@ at = [0.6, 0.0]
 
 [[cube]]
 name = "blue"
-at = [2.5, 1.0]
+at = [1.9, 0.8]
 
 [[cube]]
 name = "red"
@@ -191,3 +191,22 @@ def test_halting_a_carry_at_every_tick_keeps_the_cube_in_hand(tmp_path: Path) ->
         return ("MoveTo", ("blue", to_blue))
 
     assert halts(tmp_path, carry, "green") >= 5
+
+
+def test_ompl_plans_an_arm_motion_in_joint_space_around_a_forbidden_box() -> None:
+    """Where the straight joint move collides, OMPL finds a way round (RealVectorStateSpace)."""
+    from btplan.worlds.pybullet import motion
+    from btplan.worlds.pybullet.arm import straight_free
+    from btplan.worlds.pybullet.robot import LOWER, UPPER
+
+    start = (-1.0, 0.0, 0.0, -1.5, 0.0, 1.5, 0.0)
+    goal = (1.0, 0.0, 0.0, -1.5, 0.0, 1.5, 0.0)
+
+    def free(q: tuple[float, ...]) -> bool:
+        return not (abs(q[0]) < 0.3 and abs(q[1]) < 0.5)  # the first joints must swing round
+
+    assert not straight_free(start, goal, free)
+    plan = motion.plan_joints(start, goal, free, LOWER, UPPER, budget=1.0)
+    assert plan is not None and plan.path[0] == start and plan.path[-1] == goal
+    assert all(free(q) for q in plan.path)
+    assert all(straight_free(a, b, free) for a, b in zip(plan.path, plan.path[1:]))
