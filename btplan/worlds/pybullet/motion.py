@@ -86,7 +86,7 @@ def plan_se2(
 
     setup.setStateValidityChecker(checker)
     info = setup.getSpaceInformation()
-    info.setStateValidityCheckingResolution(0.005)
+    info.setStateValidityCheckingResolution(0.01)  # of the space extent: ~7 cm for the scene
     s, g = space.allocState(), space.allocState()
     for state, pose in ((s, start), (g, goal)):
         state.setX(pose[0])
