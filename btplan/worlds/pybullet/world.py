@@ -174,9 +174,14 @@ class PyBulletWorld:
         """The scene's scripted external events, as one agent acting before each tick."""
         return [self.agents]
 
+    def halt_all(self) -> None:
+        """Halt every running skill (an interrupted run): each leaves the world consistent."""
+        for key in sorted(self.running):
+            self.halt(key)
+
     def close(self) -> None:
-        """Save the recording (if any) and disconnect from PyBullet."""
-        self.running.clear()
+        """Halt what runs, save the recording (if any) and disconnect from PyBullet."""
+        self.halt_all()
         if self.save_recording is not None:
             self.save_recording()
             self.save_recording = None

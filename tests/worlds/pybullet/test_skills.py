@@ -96,6 +96,25 @@ def test_pick_fails_when_the_cube_is_taken_while_the_arm_reaches(room: PyBulletW
     assert folded(room) and room.state.sim.robot.grip is None
 
 
+def test_pick_fails_when_the_fingers_close_on_nothing(room: PyBulletWorld) -> None:
+    key = ("Pick", ("green",))
+    status = room.start(key)
+    while status is RUNNING and room.state.sim.robot.tip()[2] > 0.06:
+        status = room.step(key)  # until the hand is down at the cube
+    x, y, _ = room.state.sim.cube_position("green")
+    room.state.put("green", (x, y + 0.1))  # nudged away just before the fingers close
+    status, _ = run_on(room, key)
+    assert status is FAILURE and room.check(("hand_empty", ()))
+    assert folded(room) and room.state.sim.robot.grip is None
+
+
+def test_closing_the_world_halts_a_running_skill_safely(room: PyBulletWorld) -> None:
+    key = ("Pick", ("green",))
+    assert room.start(key) is RUNNING
+    room.close()
+    assert not room.running and [a.key for a in room.halted] == [key]
+
+
 def test_pick_fails_on_a_cube_out_of_the_arms_reach(room: PyBulletWorld) -> None:
     assert run(room, ("Pick", ("blue",)))[0] is FAILURE
 
