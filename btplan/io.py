@@ -83,7 +83,7 @@ def write_bytes_atomic(path: str, data: bytes) -> None:
     folder = target.parent
     if not folder.is_dir():
         raise InputError("the folder for this output does not exist", Span(path, 1, 1))
-    mode = stat.S_IMODE(info.st_mode) if info is not None else 0o666 & ~current_umask()
+    mode = output_mode(info)
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
     try:
         with os.fdopen(fd, "wb") as handle:
@@ -93,6 +93,14 @@ def write_bytes_atomic(path: str, data: bytes) -> None:
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def output_mode(existing: os.stat_result | None) -> int:
+    """The mode a plain `open` gives: an existing file's own, else 0666 less the umask.
+
+    Files finished under a private temporary name (mkstemp) take it before the rename.
+    """
+    return stat.S_IMODE(existing.st_mode) if existing is not None else 0o666 & ~current_umask()
 
 
 def current_umask() -> int:

@@ -100,3 +100,100 @@ def test_heavy_extras_are_not_imported_by_the_core(entry: str) -> None:
             f"print(','.join(m for m in {heavy!r} if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == ""
+
+
+def module_level_imports(path: Path, root: Path = PACKAGE.parent) -> list[str]:
+    """btplan modules imported at module level (also under `if TYPE_CHECKING:`), not in functions.
+
+    `from a.b import c` counts as an import of `a.b.c` when that is a module, else of `a.b`.
+    Imports inside functions are how heavy or upward-looking code is loaded lazily, and do
+    not run when the module is imported, so they cannot close a circle at import time; a
+    TYPE_CHECKING import does close one for the type checker and for the reader.
+    """
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    found: list[str] = []
+
+    def visit(nodes: list[ast.stmt]) -> None:
+        for node in nodes:
+            if isinstance(node, ast.Import):
+                found.extend(a.name for a in node.names)
+            elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+                found.extend(f"{node.module}.{a.name}" if is_module(f"{node.module}.{a.name}", root)
+                             else node.module for a in node.names)
+            elif isinstance(node, ast.If | ast.Try | ast.With):
+                for block in ("body", "orelse", "finalbody", "handlers"):
+                    for part in getattr(node, block, []):
+                        visit(part.body if isinstance(part, ast.ExceptHandler) else [part])
+
+    visit(tree.body)
+    return sorted({f for f in found if within(f, "btplan")})
+
+
+def is_module(name: str, root: Path = PACKAGE.parent) -> bool:
+    base = root.joinpath(*name.split("."))
+    return base.with_suffix(".py").is_file() or (base / "__init__.py").is_file()
+
+
+def import_graph(package: Path = PACKAGE) -> dict[str, list[str]]:
+    graph: dict[str, list[str]] = {}
+    for path in sorted(package.rglob("*.py")):
+        graph[module_name(path)] = [t for t in module_level_imports(path) if t != module_name(path)]
+    return graph
+
+
+def import_circles(graph: dict[str, list[str]]) -> list[list[str]]:
+    """Every strongly connected group of more than one module (Tarjan), each sorted."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    circles: list[list[str]] = []
+
+    def connect(node: str) -> None:
+        index[node] = low[node] = len(index)
+        stack.append(node)
+        on_stack.add(node)
+        for target in graph.get(node, []):
+            if target not in graph:
+                continue
+            if target not in index:
+                connect(target)
+                low[node] = min(low[node], low[target])
+            elif target in on_stack:
+                low[node] = min(low[node], index[target])
+        if low[node] == index[node]:
+            group = []
+            while True:
+                member = stack.pop()
+                on_stack.discard(member)
+                group.append(member)
+                if member == node:
+                    break
+            if len(group) > 1:
+                circles.append(sorted(group))
+
+    for node in sorted(graph):
+        if node not in index:
+            connect(node)
+    return sorted(circles)
+
+
+def test_no_import_circle_among_btplan_modules() -> None:
+    assert import_circles(import_graph()) == []
+
+
+def test_the_circle_check_catches_a_circle_through_type_checking(tmp_path: Path) -> None:
+    """Guard against a checker that silently accepts everything."""
+    pkg = tmp_path / "btplan" / "w"
+    pkg.mkdir(parents=True)
+    (tmp_path / "btplan" / "__init__.py").write_text("")
+    (pkg / "__init__.py").write_text("")
+    (pkg / "hub.py").write_text("from btplan.w import leaf\n")
+    (pkg / "leaf.py").write_text("from typing import TYPE_CHECKING\n"
+                                 "if TYPE_CHECKING:\n    from btplan.w.hub import Hub\n")
+    (pkg / "lazy.py").write_text("def f():\n    from btplan.w import hub\n")
+    paths = sorted(pkg.rglob("*.py"))
+    graph = {".".join(p.relative_to(tmp_path).with_suffix("").parts): [
+        t for t in module_level_imports(p, tmp_path) if is_module(t, tmp_path)] for p in paths}
+    assert graph["btplan.w.lazy"] == []
+    assert import_circles(graph) == [["btplan.w.hub", "btplan.w.leaf"]]

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 from btplan.bt.debug import StrictWorld
 from btplan.bt.node import Node
@@ -10,8 +10,16 @@ from btplan.bt.status import Status
 from btplan.bt.world import World
 
 if TYPE_CHECKING:
-    from btplan.bt.formats.btcpp_read import ImportedTrees
-    from btplan.bt.trace import TickRecorder
+    from btplan.bt.formats.btcpp_files import ImportedTrees
+
+class TickRecorder(Protocol):
+    """What the tree needs of a recorder (`btplan.bt.trace.TickRecorder` is one).
+
+    A protocol rather than an import, so that trace.py may import this module without
+    closing an import circle.
+    """
+
+    def tick(self, tree: BehaviorTree, world: World) -> Status: ...
 
 
 class BehaviorTree:

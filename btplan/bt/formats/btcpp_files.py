@@ -12,10 +12,12 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from btplan.bt.blackboard import Blackboard
 from btplan.bt.formats.btcpp_catalog import PRE_POST
 from btplan.bt.formats.btcpp_models import ModelEntry, read_models
 from btplan.bt.formats.locate import line_at
 from btplan.bt.formats.xmlparse import Element, parse_xml
+from btplan.bt.node import Node
 from btplan.errors import InputError, Span
 from btplan.io import STDIO, read_text
 
@@ -231,3 +233,13 @@ def _called(doc: XmlDocument) -> set[str]:
 
 
 __all__ = ["XmlDocument", "read_document", "short"]
+
+
+@dataclass
+class ImportedTrees:
+    """What the export needs to write an imported document back node for node."""
+
+    doc: XmlDocument
+    roots: dict[str, Node] = field(default_factory=dict)
+    board: Blackboard = field(default_factory=Blackboard)
+    used: set[str] = field(default_factory=set)

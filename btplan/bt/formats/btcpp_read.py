@@ -39,7 +39,7 @@ from btplan.bt.controls import (
 from btplan.bt.custom import BoundAction, BoundCondition, Opaque
 from btplan.bt.decorators import ForceFailure, ForceSuccess, Inverter, Retry, Timeout
 from btplan.bt.formats.btcpp_catalog import BUILTINS, EXPLICIT_TAGS, PRE_POST, BuiltinSpec
-from btplan.bt.formats.btcpp_files import XmlDocument, short
+from btplan.bt.formats.btcpp_files import ImportedTrees, XmlDocument, short
 from btplan.bt.formats.btcpp_models import ModelEntry, ModelPort
 from btplan.bt.formats.xmlparse import Element
 from btplan.bt.guard import guard
@@ -66,16 +66,6 @@ MAX_NODES = 200_000
 """Most nodes a document may expand to once every SubTree is instantiated."""
 MAX_NESTING = 150
 """Deepest nesting of nodes, SubTrees expanded; the builder recurses once per level."""
-
-
-@dataclass
-class ImportedTrees:
-    """What the export needs to write an imported document back node for node."""
-
-    doc: XmlDocument
-    roots: dict[str, Node] = field(default_factory=dict)
-    board: Blackboard = field(default_factory=Blackboard)
-    used: set[str] = field(default_factory=set)
 
 
 def ticks(msec: int) -> int:

@@ -34,7 +34,7 @@ def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = 
 
     try:
         with quiet_stdout((1, 2)):
-            for module in ("pybullet", "ompl", "PIL"):
+            for module in ("pybullet", "ompl", "PIL", *(("imageio_ffmpeg",) if record else ())):
                 importlib.import_module(module)
     except ImportError as error:
         raise WorldError(f"the PyBullet backend needs the 'sim' extra ({error.name} is "
@@ -51,11 +51,10 @@ def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = 
     loaded = load_scene(path)
     arity = {p.name: p.arity for p in task.domain.predicates}
     agents = scene_agents(loaded.events, str(path), arity)
-    world = PyBulletWorld(task, loaded, seed=seed, gui=gui, verbose=verbose)
-    world.agents = agents
+    world = PyBulletWorld(task, loaded, seed=seed, gui=gui, verbose=verbose, agents=agents)
     if recorder is not None:
-        world.recorder = recorder
         world.on_frame = recorder
+        world.save_recording = recorder.save
     return world
 
 

@@ -8,19 +8,19 @@ ticks on which it becomes true, and fires `delay` ticks after the `count`-th tim
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from difflib import get_close_matches
 from pathlib import Path
-from typing import TYPE_CHECKING
-
 from btplan.errors import InputError, Span
 from btplan.limits import shorten
 from btplan.worlds.agents import Disturbance
+from btplan.worlds.pybullet.hand import AgentHand
 from btplan.worlds.pybullet.scene import Event
+from btplan.worlds.pybullet.state import SceneState
 
-if TYPE_CHECKING:
-    from btplan.worlds.pybullet.world import PyBulletWorld
+Check = Callable[[tuple[str, tuple[str, ...]]], bool]
+"""How an event watches a condition: the world's own `check`."""
 
 
 def parse_literal(text: str, where: Span | None) -> tuple[bool, str, tuple[str, ...]]:
@@ -47,24 +47,25 @@ class ScriptedEvent:
     due: int | None = None
     done: bool = False
 
-    def act(self, world: PyBulletWorld, tick: int) -> list[str]:
+    def act(self, world: SceneState, hand: AgentHand | None, check: Check,
+            tick: int) -> list[str]:
         """Fire the event when it is due; returns what happened, in words."""
         if self.done:
             return []
         if self.due is None:
-            self.due = self._due(world, tick)
+            self.due = self._due(check, tick)
         if self.due is None or tick < self.due:
             return []
         self.done = True
-        return [apply(world, self.event)]
+        return [apply(world, hand, self.event)]
 
-    def _due(self, world: PyBulletWorld, tick: int) -> int | None:
+    def _due(self, check: Check, tick: int) -> int | None:
         if self.event.tick is not None:
             return self.event.tick
         if self.literal is None:
             return None
         positive, name, args = self.literal
-        now = world.check((name, args)) is positive
+        now = check((name, args)) is positive
         if now and not self.was_true:
             self.seen += 1
         self.was_true = now
@@ -73,15 +74,34 @@ class ScriptedEvent:
 
 @dataclass(slots=True)
 class SceneAgents:
-    """All scripted events of a scene, acting as one external agent."""
+    """All scripted events of a scene, acting as one external agent.
+
+    It is bound to the scene state and the world's `check` when the world is built
+    (`bind`); the `world` argument of `act`, which the acting loop passes to every agent,
+    is not needed.
+    """
 
     events: list[ScriptedEvent] = field(default_factory=list)
     log: list[Disturbance] = field(default_factory=list)
     name: str = "scene"
+    state: SceneState | None = None
+    check: Check | None = None
+    hand: AgentHand | None = None
 
-    def act(self, world: PyBulletWorld, tick: int) -> list[Disturbance]:
+    def bind(self, state: SceneState, check: Check) -> None:
+        self.state, self.check = state, check
+        if any(e.event.do in ("move", "remove") for e in self.events):
+            self.hand = AgentHand(state)
+
+    def act(self, world: object, tick: int) -> list[Disturbance]:
+        if self.state is None or self.check is None:
+            return []
+        state, check = self.state, self.check
         happened = [Disturbance(tick, self.name, text, "scene")
-                    for e in self.events for text in e.act(world, tick)]
+                    for e in self.events for text in e.act(state, self.hand, check, tick)]
+        if self.hand is not None:
+            happened += [Disturbance(tick, self.name, text, "scene")
+                         for text in self.hand.advance()]
         self.log.extend(happened)
         return happened
 
@@ -124,16 +144,18 @@ def _locate(lines: list[str], path: str, text: str) -> tuple[Span, str | None]:
     return Span(path, 1, 1), None
 
 
-def apply(world: PyBulletWorld, event: Event) -> str:
-    """Carry out one event on the world and describe it."""
+def apply(world: SceneState, hand: AgentHand | None, event: Event) -> str:
+    """Carry out one event on the world (or start it, for the hand) and describe it."""
     cube = event.cube
-    if event.do == "move":
+    if event.do == "teleport":
         world.put(cube, event.to)
-        return f"{event.name}: {cube} moved to {event.to}"
-    if event.do == "remove":
-        world.put(cube, None)
-        return f"{event.name}: {cube} removed"
+        return f"{event.name}: {cube} teleported to {event.to}"
+    if event.do in ("move", "remove") and hand is not None:
+        hand.take(event.name, cube, event.to if event.do == "move" else None)
+        where = f"to {event.to}" if event.do == "move" else "away"
+        return f"{event.name}: the agent's hand takes {cube} {where}"
     if world.held == cube:
-        world.put(cube, world.sim.gripper_point())
+        world.sim.robot.slip()
+        world.sim.moved()
         return f"{event.name}: {cube} slipped from the gripper"
     return f"{event.name}: {cube} was not in the gripper"

@@ -86,7 +86,7 @@ def plan_se2(
 
     setup.setStateValidityChecker(checker)
     info = setup.getSpaceInformation()
-    info.setStateValidityCheckingResolution(0.005)
+    info.setStateValidityCheckingResolution(0.01)  # of the space extent: ~7 cm for the scene
     s, g = space.allocState(), space.allocState()
     for state, pose in ((s, start), (g, goal)):
         state.setX(pose[0])
@@ -132,3 +132,59 @@ def densify(
 
 def path_length(path: tuple[Pose2, ...]) -> float:
     return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in itertools.pairwise(path))
+
+
+@dataclass(frozen=True, slots=True)
+class JointPlan:
+    """A solved arm motion: joint vectors from start to goal, and OMPL's time."""
+
+    path: tuple[tuple[float, ...], ...]
+    seconds: float
+
+
+def plan_joints(
+    start: tuple[float, ...],
+    goal: tuple[float, ...],
+    valid: Callable[[tuple[float, ...]], bool],
+    lower: tuple[float, ...],
+    upper: tuple[float, ...],
+    budget: float = 0.5,
+) -> JointPlan | None:
+    """Plan an arm motion in joint space (RealVectorStateSpace, RRTConnect, simplified).
+
+    Used where the straight joint move collides. `valid(q)` is the arm's collision check.
+    Returns None when no path is found within `budget` seconds.
+    """
+    ob, og = _ompl("base"), _ompl("geometric")
+    n = len(start)
+    space = ob.RealVectorStateSpace(n)
+    box = ob.RealVectorBounds(n)
+    for i in range(n):
+        box.setLow(i, lower[i])
+        box.setHigh(i, upper[i])
+    space.setBounds(box)
+    setup = og.SimpleSetup(space)
+
+    def checker(state: Any) -> bool:
+        return valid(tuple(state[i] for i in range(n)))
+
+    setup.setStateValidityChecker(checker)
+    info = setup.getSpaceInformation()
+    info.setStateValidityCheckingResolution(0.002)  # a fraction of the space: ~0.02 rad
+    s, g = space.allocState(), space.allocState()
+    for i in range(n):
+        s[i], g[i] = start[i], goal[i]
+    setup.setStartAndGoalStates(s, g)
+    setup.setPlanner(og.RRTConnect(info))
+    began = time.perf_counter()
+    try:
+        if not (bool(setup.solve(budget)) and setup.haveExactSolutionPath()):
+            return None
+        setup.simplifySolution()
+        raw = setup.getSolutionPath()
+        points = tuple(tuple(raw.getState(k)[i] for i in range(n))
+                       for k in range(raw.getStateCount()))
+        return JointPlan(points, time.perf_counter() - began)
+    finally:
+        setup.clear()
+        del setup, info, checker, s, g, space

@@ -3,27 +3,23 @@
 These are the world's samplers for continuous values. They search a fixed set of
 candidates (a ring around a point, a grid over a region) in a fixed order, so the same
 scene always gives the same answer, and they use PyBullet only through the world's
-collision queries.
+collision queries. Refinement (refine.py) asks them for values.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from typing import TYPE_CHECKING
-
-from btplan.model import ActionTemplate, Literal, Parameter
 from btplan.worlds.pybullet.geometry import clearance, distance, facing, grid, ring
 from btplan.worlds.pybullet.motion import Pose2
 from btplan.worlds.pybullet.paths import Trajectory
 from btplan.worlds.pybullet.scene import Point
-
-if TYPE_CHECKING:
-    from btplan.worlds.pybullet.world import PyBulletWorld
+from btplan.worlds.pybullet.state import SceneState
 
 GRID = 0.25  # metres between candidate placement poses
+ARM_NEAR, ARM_FAR = 0.45, 0.68
+"""Distances from the base's centre at which the arm reaches the floor (a ring in front)."""
 
 
-def approach_pose(world: PyBulletWorld, name: str, avoid_cubes: bool = True) -> Pose2 | None:
+def approach_pose(world: SceneState, name: str, avoid_cubes: bool = True) -> Pose2 | None:
     """A collision-free base pose next to a location, facing it, closest to the robot."""
     target = world.location(name)
     reach = world.scene.robot_radius + world.scene.cube_size / 2 + 0.08
@@ -35,7 +31,7 @@ def approach_pose(world: PyBulletWorld, name: str, avoid_cubes: bool = True) -> 
     return facing(best, target)
 
 
-def place_spot(world: PyBulletWorld, place: str) -> Point | None:
+def place_spot(world: SceneState, place: str) -> Point | None:
     """Where Place puts a cube: the free spot of a region nearest the robot, or the pose."""
     if place in world.poses:
         return world.poses[place]
@@ -45,11 +41,11 @@ def place_spot(world: PyBulletWorld, place: str) -> Point | None:
     cubes = world.floor_cubes(world.held)
     spots = [q for q in grid(region.low, region.high, 0.15)
              if region.contains(*q, margin=0.1) and world.sim.cube_fits(q[0], q[1], cubes)]
-    reach = [q for q in spots if distance(q, world.base) <= world.scene.near]
+    reach = [q for q in spots if ARM_NEAR <= distance(q, world.base) <= ARM_FAR]
     return min(reach or spots, key=lambda q: (round(distance(q, world.base), 3), q), default=None)
 
 
-def drop_spot(world: PyBulletWorld) -> Point | None:
+def drop_spot(world: SceneState) -> Point | None:
     """Beside the robot, off every known path when possible: a dropped cube is in no one's way."""
     cubes = world.floor_cubes(world.held)
     reach = world.scene.robot_radius + world.scene.cube_size / 2 + 0.05
@@ -65,11 +61,13 @@ def drop_spot(world: PyBulletWorld) -> Point | None:
     return min(spots, key=score, default=None)
 
 
-def aside_spot(world: PyBulletWorld, avoid: Trajectory | None) -> Point | None:
+def aside_spot(world: SceneState, avoid: Trajectory | None) -> Point | None:
     """A spot to put an obstacle: in an `aside` region if the scene has one, off the path."""
     regions = [r for r in world.scene.regions if r.aside]
     x0, x1, y0, y1 = world.scene.bounds
-    areas = [(r.low, r.high) for r in regions] or [((x0, y0), (x1, y1))]
+    inset = 0.1  # a cube put down by a real hand lands within a few millimetres of the spot
+    areas = [((r.low[0] + inset, r.low[1] + inset), (r.high[0] - inset, r.high[1] - inset))
+             for r in regions] or [((x0, y0), (x1, y1))]
     keep = world.scene.robot_radius + world.scene.cube_size + 0.1
     cubes = world.floor_cubes(world.held)
     others = [r for r in world.scene.regions if not r.aside]
@@ -89,37 +87,3 @@ def aside_spot(world: PyBulletWorld, avoid: Trajectory | None) -> Point | None:
             if best is None or (score, q) < best:
                 best = (score, q)
     return None if best is None else best[1]
-
-
-def refine_values(world: PyBulletWorld, template: ActionTemplate, binding: Mapping[str, str],
-                  parameter: Parameter) -> list[str]:
-    """Trajectories are planned, poses sampled off the path, blockers read off the path."""
-    domain = world.task.domain
-    related = [lit for lit in template.constraints if parameter.name in lit.args]
-    if domain.is_subtype(parameter.type, "trajectory"):
-        target = _target_of(template, binding, parameter, related)
-        return [world.new_trajectory(target)] if target is not None else []
-    traj_name = next((v for _, v in sorted(binding.items()) if v in world.trajectories), None)
-    if domain.is_subtype(parameter.type, "pose"):
-        pose = world.sample_pose(world.trajectories.get(traj_name) if traj_name else None)
-        return [pose] if pose is not None else []
-    if traj_name is not None:
-        traj = world.trajectories[traj_name]
-        world.prepare(traj_name)
-        found = sorted(c for c in world.blockers(traj) if c in world.on_floor)
-        allowed = set(world.task.objects_of(parameter.type))
-        found = [c for c in found if c in allowed]
-        traj.clearing.update(found)
-        return found
-    return []
-
-
-def _target_of(template: ActionTemplate, binding: Mapping[str, str], parameter: Parameter,
-               related: list[Literal]) -> str | None:
-    """The location a trajectory leads to: named with it in a `where`, else the first bound."""
-    for lit in related:
-        for arg in lit.args:
-            if arg != parameter.name and arg in binding:
-                return binding[arg]
-    bound = [binding[p.name] for p in template.parameters if p.name in binding]
-    return bound[0] if bound else None

@@ -75,8 +75,9 @@ class Event:
 
     It fires at `tick`, or `delay` ticks after the `count`-th time the literal `when`
     (an atom such as `holding(green)`, optionally prefixed by `not`) becomes true.
-    `do` is `move` (put `cube` at `to`), `remove` (take it out of the scene) or `slip`
-    (the cube falls out of the gripper).
+    `do` is `move` (an agent's hand carries `cube` to `to` and drops it there), `remove`
+    (the hand carries it out of the scene), `slip` (the robot's grip fails and the cube
+    falls) or `teleport` (`cube` jumps to `to`, or out of the scene without `to`: tests).
     """
 
     name: str
@@ -103,15 +104,15 @@ class Scene:
     tick_seconds: float = 0.1
     speed: float = 1.0
     robot_radius: float = 0.4
-    cube_size: float = 0.12
-    near: float = 0.75
+    cube_size: float = 0.05
+    near: float = 0.7
 
     def region(self, name: str) -> Region | None:
         return next((r for r in self.regions if r.name == name), None)
 
 
 _TOML_AT = re.compile(r"\(at line (\d+), column (\d+)\)")
-DO = ("move", "remove", "slip")
+DO = ("move", "remove", "slip", "teleport")
 KEYS: dict[str, tuple[str, ...]] = {
     "": ("world", "robot", "wall", "cube", "region", "event"),
     "world": ("bounds", "tick_seconds", "speed", "cube_size"),
@@ -243,8 +244,8 @@ class _Reader:
             tick_seconds=self.scalar(world, "tick_seconds", 0.1, least=0.001),
             speed=self.scalar(world, "speed", 1.0, least=0.01),
             robot_radius=self.scalar(robot, "radius", 0.4, least=0.05),
-            cube_size=self.scalar(world, "cube_size", 0.12, least=0.01),
-            near=self.scalar(robot, "near", 0.75, least=0.05),
+            cube_size=self.scalar(world, "cube_size", 0.05, least=0.01),
+            near=self.scalar(robot, "near", 0.7, least=0.05),
         )
         self.check_names(scene)
         return scene

@@ -1,9 +1,9 @@
-"""The PyBullet scene: bodies for walls, cubes, regions and the robot, and collision queries.
+"""The PyBullet scene: walls, regions, dynamic cubes and the robot, physics and collision queries.
 
-The robot is moved kinematically (its base pose is set each tick) and no physics step is
-taken, so a run is exactly reproducible and much faster than real time; PyBullet is used
-for geometry (collision queries through getClosestPoints) and for pictures. A grasped
-cube is rigidly attached to the gripper: its pose is recomputed from the gripper's.
+Physics is stepped at 240 Hz, several substeps per tick: cubes fall, rest and are pushed
+by contact, the arm moves by joint position control, and a grasped cube is carried by
+the fingers. Collision queries for planning (getClosestPoints on probe bodies) do not
+step the simulation. Everything is in one PyBullet client, headless unless asked.
 """
 
 from __future__ import annotations
@@ -13,17 +13,19 @@ import importlib
 import math
 import os
 import sys
+import time
 from collections.abc import Iterator
 from typing import Any
 
 from btplan.errors import WorldError
 from btplan.worlds.pybullet.motion import Pose2
+from btplan.worlds.pybullet.robot import OPEN, Robot
 from btplan.worlds.pybullet.scene import Point, Scene
 
-HUSKY_SCALE = 0.6
-GRIP_AHEAD = 0.36   # metres from the base centre to a grasped cube
-GRIP_HEIGHT = 0.32
+HZ = 240            # physics steps per simulated second
 PARKED_Z = -10.0    # cubes not in the scene (yet, or any more) wait far below the floor
+CUBE_MASS = 0.1     # kilograms
+SOLVER_ITERATIONS = 15
 
 
 @contextlib.contextmanager
@@ -73,17 +75,30 @@ class Sim:
 
         self.p = p
         self.scene = scene
+        if scene.cube_size > 2 * OPEN - 0.01:
+            raise WorldError(f"cubes of {scene.cube_size} m do not fit between the fingers "
+                             f"(at most {2 * OPEN - 0.01:.2f} m); lower [world] cube_size")
         if gui and sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
             raise WorldError("--gui needs a display (DISPLAY is not set); run headless instead")
         with quiet_stdout():
             self.client = p.connect(p.GUI if gui else p.DIRECT)
         if self.client < 0:
             raise WorldError("could not connect to PyBullet" + (" with a window" if gui else ""))
+        p.setGravity(0, 0, -9.81, physicsClientId=self.client)
+        p.setTimeStep(1.0 / HZ, physicsClientId=self.client)
+        # 15 solver iterations instead of 50: cubes rest and stack as well (grasps are held
+        # by a constraint), at 40 % less time per step.
+        p.setPhysicsEngineParameter(numSolverIterations=SOLVER_ITERATIONS,
+                                    physicsClientId=self.client)
+        self.steps = 0
+        self.physics_seconds = 0.0
+        self._positions: dict[str, tuple[float, float, float]] = {}
+        self.memo: dict[object, object] = {}
+        """Values derived from the scene (who holds what), valid until it changes."""
         with quiet_stdout():
             p.setAdditionalSearchPath(pybullet_data.getDataPath(), physicsClientId=self.client)
-            p.loadURDF("plane.urdf", physicsClientId=self.client)
-            self.robot = p.loadURDF("husky/husky.urdf", globalScaling=HUSKY_SCALE,
-                                    physicsClientId=self.client)
+            self.floor = int(p.loadURDF("plane.urdf", physicsClientId=self.client))
+            self.robot = Robot(p, self.client, self.floor)
         self.walls = [self._box(w.center, w.size, w.height / 2, (0.55, 0.5, 0.45))
                       for w in scene.walls]
         # Footprints (centre, half sizes) of the solid bodies: a cheap first test, so that
@@ -96,20 +111,25 @@ class Sim:
             self._box(region.center, (half[0] * 2, half[1] * 2), 0.002, region.color, solid=False)
         size = scene.cube_size
         self.cubes: dict[str, int] = {}
+        self.names: dict[int, str] = {}
         for cube in scene.cubes:
-            self.cubes[cube.name] = self._box((0.0, 0.0), (size, size), size / 2, cube.color)
+            body = self._box((0.0, 0.0), (size, size), size / 2, cube.color, mass=CUBE_MASS)
+            p.changeDynamics(body, -1, lateralFriction=1.0, physicsClientId=self.client)
+            self.cubes[cube.name] = body
+            self.names[body] = cube.name
             self.place_cube(cube.name, cube.at)
-        self.gripper = self._box((0.0, 0.0), (0.06, 0.2), 0.03, (0.2, 0.2, 0.2), solid=False)
         r = scene.robot_radius
         self.probe = self._cylinder(r)
         self.cube_probe = self._box((0.0, 0.0), (size, size), size / 2, None)
-        self.pose: Pose2 = scene.start
+        for probe in (self.probe, self.cube_probe):  # queried, never pushing anything
+            p.setCollisionFilterGroupMask(probe, -1, 0, 0, physicsClientId=self.client)
         self.set_robot(scene.start)
 
     # --- bodies --------------------------------------------------------------------------
 
     def _box(self, center: Point, size: Point, half_height: float,
-             color: tuple[float, float, float] | None, solid: bool = True) -> int:
+             color: tuple[float, float, float] | None, solid: bool = True,
+             mass: float = 0.0) -> int:
         """A box resting on the floor; `solid=False` makes it visual only (regions)."""
         p = self.p
         half = [size[0] / 2, size[1] / 2, half_height]
@@ -117,7 +137,7 @@ class Sim:
             if solid else -1
         visual = -1 if color is None else p.createVisualShape(
             p.GEOM_BOX, halfExtents=half, rgbaColor=[*color, 1.0], physicsClientId=self.client)
-        return int(p.createMultiBody(0.0, shape, visual, [center[0], center[1], half_height],
+        return int(p.createMultiBody(mass, shape, visual, [center[0], center[1], half_height],
                                      physicsClientId=self.client))
 
     def _cylinder(self, radius: float) -> int:
@@ -132,34 +152,66 @@ class Sim:
 
     # --- poses ---------------------------------------------------------------------------
 
-    def set_robot(self, pose: Pose2, holding: str | None = None) -> None:
-        p, (x, y, yaw) = self.p, pose
-        self.pose = pose
-        turn = p.getQuaternionFromEuler([0.0, 0.0, yaw])
-        p.resetBasePositionAndOrientation(self.robot, [x, y, 0.08], turn, physicsClientId=self.client)
-        gx, gy = x + GRIP_AHEAD * math.cos(yaw), y + GRIP_AHEAD * math.sin(yaw)
-        p.resetBasePositionAndOrientation(self.gripper, [gx, gy, GRIP_HEIGHT + 0.1], turn,
-                                          physicsClientId=self.client)
-        if holding is not None:
-            p.resetBasePositionAndOrientation(self.cubes[holding], [gx, gy, GRIP_HEIGHT], turn,
-                                              physicsClientId=self.client)
+    def set_robot(self, pose: Pose2) -> None:
+        self.robot.set_base(pose)
+        self.moved()
+
+    def moved(self) -> None:
+        """Forget what was read of the scene: the physics stepped or something was moved.
+
+        Conditions and collision queries read cube positions thousands of times between
+        two physics steps; they are read from PyBullet once per step instead.
+        """
+        self._positions.clear()
+        self.memo.clear()
+
+    @property
+    def pose(self) -> Pose2:
+        return self.robot.pose
+
+    def step(self) -> None:
+        """One physics step of 1/240 s (its wall time is kept for bench/sim.py)."""
+        began = time.perf_counter()
+        self.p.stepSimulation(physicsClientId=self.client)
+        self.physics_seconds += time.perf_counter() - began
+        self.moved()
+        self.steps += 1
 
     def place_cube(self, name: str, at: Point | None) -> None:
-        """Put a cube on the floor at `at`, or park it out of the scene when `at` is None."""
+        """Set a cube on the floor at `at`, or park it out of the scene when `at` is None.
+
+        This is a teleport (start-up, and the explicit teleport events of tests); a cube
+        in the gripper is let go first.
+        """
+        self.moved()
+        body = self.cubes[name]
+        if self.robot.gripped == body:
+            self.robot.detach()
         z = self.scene.cube_size / 2 if at is not None else PARKED_Z
         x, y = at if at is not None else (0.0, 0.0)
-        half = self.scene.cube_size / 2
-        self.extent[self.cubes[name]] = (x, y, half, half) if at is not None else (1e9, 1e9, 0, 0)
-        self.p.resetBasePositionAndOrientation(self.cubes[name], [x, y, z], [0, 0, 0, 1],
+        self.p.resetBasePositionAndOrientation(body, [x, y, z], [0, 0, 0, 1],
                                                physicsClientId=self.client)
+        self.p.resetBaseVelocity(body, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
 
     def cube_position(self, name: str) -> tuple[float, float, float]:
-        pos, _ = self.p.getBasePositionAndOrientation(self.cubes[name], physicsClientId=self.client)
-        return (float(pos[0]), float(pos[1]), float(pos[2]))
+        known = self._positions.get(name)
+        if known is None:
+            pos, _ = self.p.getBasePositionAndOrientation(self.cubes[name],
+                                                          physicsClientId=self.client)
+            known = self._positions[name] = (float(pos[0]), float(pos[1]), float(pos[2]))
+        return known
+
+    def cube_yaw(self, name: str) -> float:
+        _, orn = self.p.getBasePositionAndOrientation(self.cubes[name], physicsClientId=self.client)
+        return float(self.p.getEulerFromQuaternion(orn)[2])
+
+    def cube_speed(self, name: str) -> float:
+        linear, _ = self.p.getBaseVelocity(self.cubes[name], physicsClientId=self.client)
+        return math.sqrt(sum(v * v for v in linear))
 
     def gripper_point(self) -> Point:
-        x, y, yaw = self.pose
-        return (x + GRIP_AHEAD * math.cos(yaw), y + GRIP_AHEAD * math.sin(yaw))
+        x, y, _ = self.robot.tip()
+        return (x, y)
 
     # --- collision queries ---------------------------------------------------------------
 
@@ -167,13 +219,21 @@ class Sim:
               margin: float) -> bool:
         reach = (self.scene.robot_radius if probe == self.probe else self.scene.cube_size) \
             + margin + 0.02
-        near = [b for b in bodies if _box_distance(at[0], at[1], self.extent[b]) <= reach]
+        near = [b for b in bodies if _box_distance(at[0], at[1], self.footprint(b)) <= reach]
         if not near:
             return False
         p = self.p
         p.resetBasePositionAndOrientation(probe, at, [0, 0, 0, 1], physicsClientId=self.client)
         return any(p.getClosestPoints(probe, body, margin, physicsClientId=self.client)
                    for body in near)
+
+    def footprint(self, body: int) -> tuple[float, float, float, float]:
+        """Centre and half sizes on the floor: fixed for walls, read for cubes (they move)."""
+        if body in self.extent:
+            return self.extent[body]
+        pos = self.cube_position(self.names[body])
+        half = self.scene.cube_size * 0.71  # any yaw
+        return (float(pos[0]), float(pos[1]), half, half) if pos[2] > -1 else (1e9, 1e9, 0, 0)
 
     def in_bounds(self, x: float, y: float, radius: float) -> bool:
         x0, x1, y0, y1 = self.scene.bounds
@@ -199,18 +259,20 @@ class Sim:
 
     # --- pictures ------------------------------------------------------------------------
 
-    def snapshot(self, width: int = 480, height: int = 300) -> tuple[int, int, bytes]:
-        """An RGB picture from a fixed camera above the scene (software renderer, headless)."""
+    def snapshot(self, width: int = 640, height: int = 400) -> tuple[int, int, bytes]:
+        """An RGB picture from a camera that follows the robot (software renderer, headless).
+
+        The camera keeps one direction (from the south-west, above) and follows the base's
+        position, close enough that the arm and the fingers are plainly visible.
+        """
         p = self.p
-        x0, x1, y0, y1 = self.scene.bounds
-        cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
-        span = max(x1 - x0, y1 - y0)
+        x, y, _ = self.robot.pose
         for probe in (self.probe, self.cube_probe):  # collision probes would show as grey shapes
             p.resetBasePositionAndOrientation(probe, [0, 0, PARKED_Z], [0, 0, 0, 1],
                                               physicsClientId=self.client)
-        view = p.computeViewMatrix([cx, cy - 0.35 * span, 0.55 * span], [cx, cy - 0.02 * span, 0.0],
-                                   [0, 0, 1], physicsClientId=self.client)
-        proj = p.computeProjectionMatrixFOV(62, width / height, 0.1, 4 * span,
+        view = p.computeViewMatrix([x - 0.95, y - 1.6, 1.45], [x + 0.3, y, 0.25], [0, 0, 1],
+                                   physicsClientId=self.client)
+        proj = p.computeProjectionMatrixFOV(55, width / height, 0.1, 30.0,
                                             physicsClientId=self.client)
         _, _, rgba, _, _ = p.getCameraImage(width, height, view, proj,
                                             renderer=p.ER_TINY_RENDERER,

@@ -1,119 +1,231 @@
-"""The robot's skills: MoveTo, Pick, Place, PlaceAside and Drop, each running over ticks.
+"""The robot's skills: MoveTo, Pick, Place, Drop and ClearPath, each running over ticks.
 
-A skill is created when the tree starts an action and stepped on each later tick that
-reaches it; it answers RUNNING until it is done. Halting simply drops the skill, which
-leaves the robot standing where it is (the base is moved kinematically). Durations are
-in ticks so that runs are reproducible; MoveTo covers `speed * tick_seconds` metres of
-its path per tick.
+A skill is a script (a generator of arm and base motions from arm.py) that the runner
+steps: on every tick it runs `substeps` physics steps (240 Hz), and the skill answers
+RUNNING until its script returns SUCCESS or FAILURE. Success is read from the scene
+(the cube is between the closed fingers, or has come to rest where it was put), never
+assumed. A halted skill leaves the world consistent: a cube held stays held, a grasp
+not yet made is let go, and the arm folds back over the base.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Protocol
+import math
+from collections.abc import Generator
+from typing import Protocol
 
 from btplan.bt.status import FAILURE, RUNNING, SUCCESS, Status
-from btplan.worlds.pybullet.geometry import facing
+from btplan.worlds.pybullet import arm
+from btplan.worlds.pybullet.arm import Timings
 from btplan.worlds.pybullet.paths import DRIVE_FROM
+from btplan.worlds.pybullet.robot import SHUT
+from btplan.worlds.pybullet.routes import Routes
+from btplan.worlds.pybullet.scene import Point
+from btplan.worlds.pybullet.sim import HZ
+from btplan.worlds.pybullet.state import SceneState
 
-if TYPE_CHECKING:
-    from btplan.worlds.pybullet.world import PyBulletWorld
-
-GRASP_TICKS = 3
-RELEASE_TICKS = 2
+Script = Generator[None, None, Status]
+ABOVE = 0.12          # metres above the grasp or put-down point where the hand approaches
 MAX_RETARGETS = 3
+SAFE_SECONDS = 3.0    # the longest a halted skill may take to fold the arm
 
 
 class Skill(Protocol):
-    def step(self, world: PyBulletWorld) -> Status: ...
+    def step(self) -> Status: ...
 
     def halt(self) -> None: ...
 
 
-class MoveTo:
-    """Follows the named trajectory; fails when its remaining path is no longer free."""
+class Scripted:
+    """Runs a script for one tick's worth of physics substeps per `step`."""
 
-    def __init__(self, world: PyBulletWorld, target: str, trajectory: str) -> None:
-        self.target, self.name = target, trajectory
-        self.index = 0
-        self.retargets = 0
-        world.prepare(trajectory, DRIVE_FROM)
-        self.traj = world.trajectories[trajectory]
-        self.traj.executing = True
+    def __init__(self, state: SceneState, timings: Timings, script: Script) -> None:
+        self.state, self.timings, self.script = state, timings, script
+        self.substeps = max(1, round(state.scene.tick_seconds * HZ))
+        self.done: Status | None = None
+        self.started = False
 
-    def step(self, world: PyBulletWorld) -> Status:
-        path = self.traj.path
-        if not path or world.path_blockers(self.traj, self.index):
-            return self.stop(FAILURE)
-        self.index = min(self.index + world.waypoints_per_tick, len(path) - 1)
-        world.move_base(path[self.index])
-        if world.is_near(self.target):
-            # Within reach is what the postcondition asks; the tree would stop us here anyway.
-            return self.stop(SUCCESS)
-        if self.index < len(path) - 1:
-            return RUNNING
-        # The target moved while we drove: plan again from here, a few times at most.
-        self.retargets += 1
-        if self.retargets > MAX_RETARGETS:
-            return self.stop(FAILURE)
-        self.traj.executing = False
-        world.prepare(self.name, DRIVE_FROM)
-        self.traj.executing = True
-        self.index = 0
+    def step(self) -> Status:
+        if self.done is not None:
+            return self.done
+        sim = self.state.sim
+        # The script sets its commands, the physics steps, and the script looks at the
+        # result: after the tick's last step too, so a postcondition reached on that
+        # step ends the action in this tick, before the tree sees it and halts it.
+        try:
+            if not self.started:
+                self.started = True
+                next(self.script)
+            for _ in range(self.substeps):
+                sim.step()
+                next(self.script)
+        except StopIteration as finished:
+            self.done = finished.value
+            return finished.value  # type: ignore[no-any-return]
         return RUNNING
 
-    def stop(self, status: Status) -> Status:
-        self.traj.executing = False
-        return status
-
     def halt(self) -> None:
-        self.traj.executing = False
+        """Stop the script, then make the robot safe (synchronously, bounded in time)."""
+        self.script.close()
+        if self.done is None:
+            settle(self.state, self.timings)
 
 
-class Pick:
-    """Turns to the cube, closes the gripper, lifts: the cube is attached on the last tick."""
-
-    def __init__(self, world: PyBulletWorld, cube: str) -> None:
-        self.cube = cube
-        self.ticks = 0
-        self.ok = world.held is None and world.present(cube) and world.is_near(cube)
-        if self.ok:
-            world.move_base(facing(world.base[:2], world.location(cube)))
-
-    def step(self, world: PyBulletWorld) -> Status:
-        if not self.ok or not world.present(self.cube) or not world.is_near(self.cube):
-            return FAILURE
-        self.ticks += 1
-        if self.ticks < GRASP_TICKS:
-            return RUNNING
-        world.grasp(self.cube)
-        return SUCCESS
-
-    def halt(self) -> None:
-        pass
+def settle(state: SceneState, timings: Timings) -> None:
+    """Keep a cube that is firmly held, let go of anything else, fold the arm."""
+    robot = state.sim.robot
+    held = state.held
+    if held is None:
+        robot.open()
+    elif robot.grip is None:
+        robot.attach(state.sim.cubes[held])
+    safe = arm.to_carry(state, timings, held)
+    for _ in range(int(SAFE_SECONDS * HZ)):
+        try:
+            next(safe)
+        except StopIteration:
+            break
+        state.sim.step()
 
 
-class Release:
-    """Puts the held cube down at a spot chosen when the action starts (Place, Drop)."""
+def facing(state: SceneState, at: Point) -> float:
+    x, y, _ = state.base
+    return math.atan2(at[1] - y, at[0] - x)
 
-    def __init__(self, world: PyBulletWorld, cube: str, spot: tuple[float, float] | None,
-                 ticks: int = RELEASE_TICKS) -> None:
-        self.cube, self.spot, self.duration = cube, spot, ticks
-        self.ticks = 0
-        self.ok = world.held == cube and spot is not None
-        if self.ok and spot is not None:
-            world.move_base(facing(world.base[:2], spot))
 
-    def step(self, world: PyBulletWorld) -> Status:
-        if not self.ok or world.held != self.cube or self.spot is None:
-            return FAILURE
-        self.ticks += 1
-        if self.ticks < self.duration:
-            return RUNNING
-        world.release(self.spot)
-        return SUCCESS
+def grasp_yaws(state: SceneState, cube: str) -> list[float]:
+    """The hand's yaw for each side of the cube, the one turning the wrist least first."""
+    yaw = state.sim.cube_yaw(cube)
+    hand = state.base[2]
+    return sorted((yaw + k * math.pi / 2 for k in range(4)),
+                  key=lambda a: (round(abs(math.remainder(a - hand, math.tau)), 4), a))
 
-    def halt(self) -> None:
-        pass
+
+def pick(state: SceneState, timings: Timings, cube: str) -> Script:
+    """Face the cube, reach above it, descend, close, lift; SUCCESS once it is in hand."""
+    if state.held is not None or not state.present(cube) or not state.is_near(cube):
+        return FAILURE
+    robot, body = state.sim.robot, state.sim.cubes[cube]
+    yield from arm.clear_of_floor(state, timings)
+    yield from arm.turn_to(state, facing(state, state.location(cube)))
+    x, y, z = state.sim.cube_position(cube)
+    reach: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    for yaw in grasp_yaws(state, cube):  # a sampled grasp and its approach, both collision-free
+        above = arm.solve(state, timings, (x, y, z + ABOVE), yaw)
+        at = arm.solve(state, timings, (x, y, z), yaw) if above is not None else None
+        if above is not None and at is not None and arm.plan_arm(state, timings, at, cube):
+            reach = (above, at)
+            break
+    if reach is None:
+        return FAILURE  # out of reach, or every grasp collides
+    yield from arm.opened(state)
+    if not (yield from arm.move_arm(state, timings, reach[0], cube)):
+        return (yield from give_up(state, timings))
+    if moved(state, cube, (x, y, z)):
+        return (yield from give_up(state, timings))  # someone took it while we reached
+    yield from arm.follow(state, [robot.joints(), reach[1]])
+    if not (yield from arm.fingers(state, SHUT, body)):
+        return (yield from give_up(state, timings))  # missed: the fingers closed on nothing
+    state.handled += 1
+    # Lift. Done as soon as the cube is held off the floor: that is `holding(c)`, and a
+    # reactive tree would halt the action on the next tick anyway. MoveTo folds the arm.
+    for _ in arm.follow(state, [robot.joints(), reach[0]]):
+        if state.lifted(cube):
+            return SUCCESS
+        yield
+    return SUCCESS if state.lifted(cube) else (yield from give_up(state, timings))
+
+
+def moved(state: SceneState, cube: str, at: tuple[float, float, float]) -> bool:
+    return not state.present(cube) or math.dist(state.sim.cube_position(cube), at) > 0.015
+
+
+def give_up(state: SceneState, timings: Timings) -> Script:
+    """Open the hand, fold the arm, and report FAILURE."""
+    yield from arm.opened(state)
+    yield from arm.to_carry(state, timings)
+    return FAILURE
+
+
+def put_down(state: SceneState, timings: Timings, cube: str, spot: Point | None,
+             place: str | None) -> Script:
+    """Face the spot, lower the cube onto it, open, let it settle; check where it rests."""
+    if spot is None or state.held != cube:
+        return FAILURE
+    robot = state.sim.robot
+    yield from arm.clear_of_floor(state, timings)
+    yield from arm.turn_to(state, facing(state, spot))
+    z = state.scene.cube_size / 2 + 0.01
+    yaw = robot.tip_yaw()
+    above = arm.solve(state, timings, (spot[0], spot[1], z + ABOVE), yaw)
+    at = arm.solve(state, timings, (spot[0], spot[1], z), yaw) if above is not None else None
+    if above is None or at is None:
+        return FAILURE  # out of reach: the cube stays in hand
+    if not (yield from arm.move_arm(state, timings, above, cube)):
+        return FAILURE
+    yield from arm.follow(state, [robot.joints(), at])
+
+    def done() -> bool:
+        # Place achieves on(c, r); Drop and the put-down of ClearPath achieve an empty hand
+        # (and a path the cube no longer blocks): done as soon as the cube has left the hand.
+        if place is not None:
+            return state.on(cube, place)
+        return state.held != cube
+
+    # Open, lift the hand clear, wait for the cube to settle: done as soon as the cube
+    # rests where it was put (the postcondition), as for Pick. The next skill folds the arm.
+    for motion in (arm.opened(state), arm.follow(state, [robot.joints(), above]),
+                   arm.pause(0.5)):
+        for _ in motion:
+            if done():
+                state.released(cube)
+                return SUCCESS
+            yield
+    state.released(cube)
+    yield from arm.to_carry(state, timings)
+    return FAILURE
+
+
+def move_to(routes: Routes, timings: Timings, target: str, trajectory: str) -> Script:
+    """Fold the arm, then follow the trajectory; FAILURE when the way ahead gets blocked."""
+    state = routes.state
+    yield from arm.to_carry(state, timings, state.held)
+    routes.prepare(trajectory, DRIVE_FROM)
+    traj = state.trajectories[trajectory]
+    traj.executing = True
+    speed = state.scene.speed
+    substeps = max(1, round(state.scene.tick_seconds * HZ))
+    retargets = 0
+    try:
+        index = 0
+        while True:
+            path = traj.path
+            if not path or state.path_blockers(traj, index):
+                return FAILURE
+            # One tick's worth of path, checked at the start of the tick as before.
+            budget = substeps
+            while budget > 0 and index < len(path) - 1:
+                index += 1
+                for _ in arm.drive(state, path[index], speed):
+                    if state.is_near(target):
+                        return SUCCESS  # within reach: the postcondition holds
+                    budget -= 1
+                    yield
+            if state.is_near(target):
+                return SUCCESS
+            if index >= len(path) - 1:
+                retargets += 1  # the target moved while we drove: plan again from here
+                if retargets > MAX_RETARGETS:
+                    return FAILURE
+                traj.executing = False
+                routes.prepare(trajectory, DRIVE_FROM)
+                traj.executing = True
+                index = 0
+            if budget > 0:
+                for _ in range(budget):
+                    yield
+    finally:
+        traj.executing = False
 
 
 class ClearPath:
@@ -122,36 +234,42 @@ class ClearPath:
     Its effect (the path is free) only counts at the end, as for every action of the
     domain, so while it runs the world hides its intermediate state from the
     conditions: the cube being carried leaves the hand "empty" for the task, and the
-    robot stays "near" it. Halting it mid-way leaves the cube in the gripper.
+    robot stays "near" it.
     """
 
-    def __init__(self, world: PyBulletWorld, cube: str, pose: str) -> None:
+    def __init__(self, routes: Routes, timings: Timings, cube: str, pose: str) -> None:
+        self.routes, self.world, self.timings = routes, routes.state, timings
         self.cube, self.pose = cube, pose
-        self.phase: Skill = Pick(world, cube)
+        self.phase: Skill = Scripted(self.world, timings, pick(self.world, timings, cube))
         self.stage = 0
-        world.clearing_now = cube
+        self.world.clearing_now = cube
 
     @property
     def doing(self) -> str:
         """What the robot is doing within the action, for the recorded frames."""
         return ("picking", "carrying", "putting down")[self.stage]
 
-    def step(self, world: PyBulletWorld) -> Status:
-        status = self.phase.step(world)
+    def step(self) -> Status:
+        status = self.phase.step()
         if status is RUNNING:
             return RUNNING
         if status is FAILURE or self.stage == 2:
-            return self.stop(world, status)
+            return self.stop(status)
         self.stage += 1
+        world = self.world
         if self.stage == 1:
-            self.phase = MoveTo(world, self.pose, world.new_trajectory(self.pose))
+            traj = self.routes.new_trajectory(self.pose)
+            self.phase = Scripted(world, self.timings, move_to(self.routes, self.timings, self.pose, traj))
         else:
-            self.phase = Release(world, self.cube, world.poses[self.pose])
+            spot = world.poses[self.pose]
+            self.phase = Scripted(world, self.timings,
+                                  put_down(world, self.timings, self.cube, spot, None))
         return RUNNING
 
-    def stop(self, world: PyBulletWorld, status: Status) -> Status:
-        world.clearing_now = None
+    def stop(self, status: Status) -> Status:
+        self.world.clearing_now = None
         return status
 
     def halt(self) -> None:
         self.phase.halt()
+        self.world.clearing_now = None

@@ -53,13 +53,13 @@ def test_conditions_are_read_from_the_scene(room: PyBulletWorld) -> None:
 def test_a_refined_trajectory_is_a_collision_free_ompl_path_to_the_target(
         youbot: PyBulletWorld) -> None:
     name = trajectory_to(youbot, "green")
-    traj = youbot.trajectories[name]
-    assert traj.path[0][:2] == youbot.base[:2]
-    assert distance(traj.path[-1], youbot.location("green")) <= youbot.scene.near
-    walls_and_cubes = youbot.floor_cubes("green")
-    assert all(youbot.sim.base_free(x, y, walls_and_cubes) for x, y, _ in traj.path)
+    traj = youbot.state.trajectories[name]
+    assert traj.path[0][:2] == youbot.state.base[:2]
+    assert distance(traj.path[-1], youbot.state.location("green")) <= youbot.scene.near
+    walls_and_cubes = youbot.state.floor_cubes("green")
+    assert all(youbot.state.sim.base_free(x, y, walls_and_cubes) for x, y, _ in traj.path)
     assert youbot.check(("free", (name,))) and youbot.check(("route", ("green", name)))
-    assert youbot.plan_seconds and youbot.plan_seconds[-1] < 5
+    assert youbot.routes.plan_seconds and youbot.routes.plan_seconds[-1] < 5
 
 
 def test_the_same_question_gets_the_same_trajectory(youbot: PyBulletWorld) -> None:
@@ -73,22 +73,22 @@ def test_a_cube_in_the_doorway_blocks_the_only_way_and_refinement_names_it(
     binding = {"t": to_goal}
     assert youbot.refine(CLEAR, binding, param(CLEAR, "c")) == ["blue"]  # type: ignore[arg-type]
     (pose,) = youbot.refine(CLEAR, {**binding, "c": "blue"}, param(CLEAR, "p"))  # type: ignore[arg-type]
-    spot = youbot.poses[pose]
+    spot = youbot.state.poses[pose]
     storage = youbot.scene.region("storage")
     assert storage is not None and storage.contains(*spot)
     keep = youbot.scene.robot_radius + youbot.scene.cube_size
-    assert clearance(spot, youbot.trajectories[to_goal].path) > keep
+    assert clearance(spot, youbot.state.trajectories[to_goal].path) > keep
 
 
 def test_free_is_checked_again_every_time_so_a_moved_cube_blocks_a_path(
         room: PyBulletWorld) -> None:
     name = trajectory_to(room, "green")
-    path = room.trajectories[name].path
+    path = room.state.trajectories[name].path
     assert room.check(("free", (name,)))
     middle = path[len(path) // 2]
-    room.put("red", (middle[0], middle[1]))
+    room.state.put("red", (middle[0], middle[1]))
     assert not room.check(("free", (name,)))
-    room.put("red", None)
+    room.state.put("red", None)
     assert room.check(("free", (name,)))
 
 
@@ -101,17 +101,18 @@ def test_the_figure7_tree_runs_the_skills_over_many_ticks(room: PyBulletWorld) -
     assert [a.name for a in room.executed] == ["MoveTo", "Pick", "MoveTo", "Place"]
     assert room.check(("on", ("green", "goal"))) and room.check(("hand_empty", ()))
     region = room.scene.region("goal")
-    assert region is not None and region.contains(*room.location("green"))
+    assert region is not None and region.contains(*room.state.location("green"))
 
 
 def test_a_halted_move_stops_the_base_where_it_is(room: PyBulletWorld) -> None:
     key = ("MoveTo", ("green", trajectory_to(room, "green")))
     assert room.start(key) is RUNNING
-    room.step(key)
-    stopped = room.base
+    for _ in range(5):  # it turns on the spot first, then drives
+        room.step(key)
+    stopped = room.state.base
     room.halt(key)
     assert [a.key for a in room.halted] == [key]
-    assert room.base == stopped and stopped[:2] != room.scene.start[:2]
+    assert room.state.base == stopped and stopped[:2] != room.scene.start[:2]
     assert room.check(("hand_empty", ()))
 
 
@@ -134,18 +135,33 @@ def test_record_writes_a_gif_with_the_current_action_on_each_frame(tmp_path: Pat
     finally:
         world.close()
     with Image.open(movie) as image:
-        assert image.format == "GIF" and image.size == (480, 300)
-        assert image.n_frames == 4  # one frame every third action tick
+        assert image.format == "GIF" and image.size == (640, 400)
+        assert image.n_frames == 6  # one frame every second action tick
         first = image.convert("RGB")
         # The label bar is drawn on top: black with white text.
-        assert first.getpixel((300, 2)) == (0, 0, 0)
-        assert any(first.getpixel((x, 9)) != (0, 0, 0) for x in range(6, 120))
+        assert first.getpixel((400, 2)) == (0, 0, 0)
+        assert any(first.getpixel((x, 10)) != (0, 0, 0) for x in range(6, 120))
+
+
+def test_record_writes_an_mp4_with_the_encoder_of_the_sim_extra(tmp_path: Path) -> None:
+    movie = tmp_path / "run.mp4"
+    world = open_world(TASK, write_scene(tmp_path), seed=3, record=str(movie))
+    try:
+        tree = BehaviorTree(figure7_tree(trajectory_to(world, "green"), trajectory_to(world, "goal")))
+        for _ in range(6):
+            tree.tick(world)
+        assert not movie.exists()  # written next to it, renamed at the end
+    finally:
+        world.close()
+    data = movie.read_bytes()
+    assert data[4:8] == b"ftyp" and len(data) > 1000
+    assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".btplan-")] == []
 
 
 def test_record_refuses_formats_it_cannot_write(tmp_path: Path) -> None:
     from btplan.errors import WorldError
 
-    with pytest.raises(WorldError, match="only .gif"):
+    with pytest.raises(WorldError, match="use a .mp4 or .gif"):
         open_world(TASK, write_scene(tmp_path), record=str(tmp_path / "run.avi"))
 
 
@@ -175,9 +191,9 @@ def test_a_cube_put_on_the_path_ahead_stops_a_running_move(room: PyBulletWorld) 
     name = trajectory_to(room, "goal")
     key = ("MoveTo", ("goal", name))
     assert room.start(key) is RUNNING
-    path = room.trajectories[name].path
+    path = room.state.trajectories[name].path
     ahead = path[int(len(path) * 0.6)]
-    room.put("red", (ahead[0], ahead[1]))
+    room.state.put("red", (ahead[0], ahead[1]))
     assert not room.check(("free", (name,)))
     assert room.step(key) is FAILURE
     assert [a.key for a in room.failed] == [key]
@@ -190,9 +206,9 @@ from btplan.worlds.pybullet import open_world
 task = load([sys.argv[1]], None)
 move = task.domain.action_map["MoveTo"]
 world = open_world(task, seed=int(sys.argv[2]))
-world.move_base((1.0, -1.5, 0.0))  # the way to the goal now bends through the doorway
+world.state.move_base((1.0, -1.5, 0.0))  # the way to the goal now bends through the doorway
 (name,) = world.refine(move, {"l": "goal"}, move.parameters[1])
-print(repr(world.trajectories[name].path))
+print(repr(world.state.trajectories[name].path))
 world.close()
 """
 

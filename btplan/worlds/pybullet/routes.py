@@ -1,0 +1,116 @@
+"""Named trajectories for the base: planned with OMPL, re-planned when they went stale.
+
+Built on the scene state and the samplers (the approach pose at a trajectory's end);
+the conditions, the skills and refinement use it.
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+
+from btplan.worlds.pybullet import motion, samplers
+from btplan.worlds.pybullet.motion import Pose2
+from btplan.worlds.pybullet.paths import CHECK_FROM, Trajectory
+from btplan.worlds.pybullet.state import SceneState
+
+STEP = 0.05          # metres between waypoints of a path
+PLAN_BUDGET = 0.3    # seconds OMPL may take for a path that avoids walls only (solves take ~15 ms)
+DETOUR_BUDGET = 0.1  # seconds for a path that also avoids the movable cubes
+
+
+class Routes:
+    """Plans and re-plans the trajectories of `state`; keeps OMPL's timings for the stats."""
+
+    def __init__(self, state: SceneState) -> None:
+        self.state = state
+        self.plan_seconds: list[float] = []
+        self._counter = itertools.count(1)
+        self._no_detour: set[tuple[object, ...]] = set()
+        self._no_path: set[tuple[object, ...]] = set()
+        self.last_free: dict[str, bool] = {}
+        """What `free(t)` was when last measured: the facts report it for a path not
+        measured now (planned from elsewhere), so that they do not flicker as the robot moves."""
+
+    def new_trajectory(self, target: str) -> str:
+        name = f"traj{next(self._counter)}"
+        self.state.trajectories[name] = Trajectory(name, target)
+        self.prepare(name)
+        return name
+
+    def sample_pose(self, avoid: Trajectory | None) -> str | None:
+        """Reserve a spot off `avoid`'s path to put an obstacle, and name it."""
+        spot = samplers.aside_spot(self.state, avoid)
+        if spot is None:
+            return None
+        name = f"pose{len(self.state.poses) + 1}"
+        self.state.poses[name] = spot
+        return name
+
+    def free(self, name: str) -> bool:
+        traj = self.state.trajectories.get(name)
+        if traj is None:
+            return False
+        self.prepare(name)
+        self.last_free[name] = not self.state.blockers(traj)
+        return self.last_free[name]
+
+    def prepare(self, name: str, slack: float = CHECK_FROM) -> None:
+        """Plan the trajectory again if it was planned from elsewhere or its target moved.
+
+        `slack` is how far from the path's start the robot may be: small when the robot is
+        about to drive the path, larger when the path is only checked, which saves most
+        re-planning while the robot drives elsewhere.
+        """
+        state = self.state
+        traj = state.trajectories[name]
+        if traj.target in state.sim.cubes and not state.present(traj.target):
+            return  # a cube taken out of the scene: keep the old path, nothing to reach
+        goal = samplers.approach_pose(state, traj.target) or \
+            samplers.approach_pose(state, traj.target, avoid_cubes=False)
+        if not traj.stale(state.base, goal, state.layout(), slack) or goal is None:
+            return
+        traj.path, traj.goal = self._plan(traj.target, goal), goal
+        traj.layout = state.layout()
+        traj.plans += 1
+
+    def _plan(self, target: str, goal: Pose2) -> tuple[Pose2, ...]:
+        state = self.state
+        start = state.base
+        # A path OMPL did not find stays unfound for a while: remember the question, or a
+        # path checked every tick would spend its whole budget on every tick.
+        question = (target, tuple(round(v, 1) for v in goal), round(start[0], 1),
+                    round(start[1], 1))
+        if question in self._no_path:
+            return ()
+        walls_only = self._solve(start, goal, [], PLAN_BUDGET)
+        if walls_only is None:
+            self._no_path.add(question)
+            return ()
+        path = walls_only
+        cubes = state.floor_cubes(target, state.held)
+        if any(state.on_path(c, path, 0) for c in cubes):
+            layout = (target, tuple((c, tuple(round(v, 2) for v in state.location(c)))
+                                    for c in cubes),
+                      round(start[0], 1), round(start[1], 1))
+            if layout not in self._no_detour:
+                detour = self._solve(start, goal, cubes, DETOUR_BUDGET)
+                if detour is None:
+                    self._no_detour.add(layout)
+                else:
+                    path = detour
+        return path
+
+    def _solve(self, start: Pose2, goal: Pose2, cubes: list[str], budget: float
+               ) -> tuple[Pose2, ...] | None:
+        sim = self.state.sim
+
+        def valid(x: float, y: float) -> bool:
+            return sim.base_free(x, y, cubes)
+
+        if not (valid(start[0], start[1]) and valid(goal[0], goal[1])):
+            return None  # OMPL would spend its whole budget before saying so
+        began = time.perf_counter()
+        result = motion.plan_se2(start, goal, valid, self.state.scene.bounds, budget, STEP)
+        self.plan_seconds.append(time.perf_counter() - began)  # failed solves count too
+        return None if result is None else result.path

@@ -1,0 +1,185 @@
+"""The scene state at the bottom of the PyBullet world: where the robot and the cubes are.
+
+Everything above it (samplers, routes, skills, agents, the recorder and the world the
+tree ticks against) reads and changes the scene through this one object, and nothing
+here knows about them: the import graph of the backend has no circle.
+"""
+
+from __future__ import annotations
+
+import math
+
+from btplan.errors import WorldError
+from btplan.model import Task
+from btplan.worlds.pybullet.geometry import clearance, distance
+from btplan.worlds.pybullet.motion import Pose2
+from btplan.worlds.pybullet.paths import Trajectory
+from btplan.worlds.pybullet.scene import Point, Scene
+from btplan.worlds.pybullet.sim import HZ, Sim
+
+
+REST_HEIGHT = 0.01   # metres above its resting height a cube on the floor may be
+REST_SPEED = 0.25    # m/s: slower than this, a cube on the floor has landed (it may still settle)
+LIFTED = 0.004       # metres above its resting height a held cube must be
+
+
+class SceneState:
+    """The robot, the cubes, the named trajectories and poses, and the PyBullet client.
+
+    Where a cube is and whether the robot holds it are read from the simulation each
+    time they are asked; the only bookkeeping is what the planner named (trajectories,
+    poses) and how often the robot handled a cube (which makes planned paths stale).
+    """
+
+    def __init__(self, task: Task, scene: Scene, gui: bool = False) -> None:
+        self.task, self.scene = task, scene
+        self.cube_names = tuple(sorted(c.name for c in scene.cubes))
+        self.clearing_now: str | None = None  # the cube a running ClearPath carries
+        self.handled = 0  # cubes the robot grasped or put down so far
+        self.carried: set[str] = set()  # cubes in an external agent's hand, out of reach
+        self.trajectories: dict[str, Trajectory] = {}
+        self.poses: dict[str, Point] = {}
+        self.check_objects()
+        self.sim = Sim(scene, gui)  # after the checks: a refused scene leaves no connection open
+
+    @property
+    def base(self) -> Pose2:
+        return self.sim.pose
+
+    @property
+    def seconds(self) -> float:
+        """Simulated time: physics steps so far."""
+        return self.sim.steps / HZ
+
+    @property
+    def held(self) -> str | None:
+        """The cube between the closed fingers, both touching it (from the scene, not a flag)."""
+        memo = self.sim.memo
+        if "held" not in memo:
+            robot = self.sim.robot
+            tip = robot.tip()
+            memo["held"] = next((name for name in self.cube_names
+                                 if math.dist(self.sim.cube_position(name), tip) < 0.08
+                                 and robot.holds(self.sim.cubes[name])), None)
+        held = memo["held"]
+        return held if isinstance(held, str) else None
+
+    def lifted(self, cube: str) -> bool:
+        """In the hand and off the floor: what Pick achieves and `holding(c)` means."""
+        z = self.sim.cube_position(cube)[2]
+        return z > self.scene.cube_size / 2 + LIFTED and self.held == cube
+
+    def check_objects(self) -> None:
+        known = set(self.cube_names) | {r.name for r in self.scene.regions}
+        poses = set(self.task.objects_of(self.type_of("pose")))
+        for name in self.task.objects_of(self.type_of("location")):
+            if name not in known and name not in poses:
+                raise WorldError(f"{name!r} is a location in the problem but not in the scene "
+                                 f"{self.scene.path}; add it as a [[cube]] or [[region]]")
+
+    def type_of(self, wanted: str) -> str:
+        return wanted if wanted in self.task.domain.type_parents else "object"
+
+    def present(self, name: str) -> bool:
+        """A cube in the scene and not in an agent's hand; any other location is always there."""
+        if name not in self.sim.cubes:
+            return True
+        return name not in self.carried and self.sim.cube_position(name)[2] > -1.0
+
+    def floor_cubes(self, *excluded: str | None) -> list[str]:
+        """Cubes in the scene and not in the hand, except `excluded`."""
+        skip = {*excluded, self.held}
+        return [c for c in self.cube_names if c not in skip and self.present(c)]
+
+    def resting(self, cube: str) -> bool:
+        """On the floor and still: where a put-down cube came to rest."""
+        z = self.sim.cube_position(cube)[2]
+        return (-1.0 < z <= self.scene.cube_size / 2 + REST_HEIGHT
+                and self.sim.cube_speed(cube) < REST_SPEED)
+
+    def location(self, name: str) -> Point:
+        """Where a location is now: a cube's position, a region's centre or a sampled pose."""
+        if name in self.sim.cubes:
+            x, y, z = self.sim.cube_position(name)
+            if z < -1.0:
+                raise WorldError(f"cube {name!r} is not in the scene")
+            return (x, y)
+        region = self.scene.region(name)
+        if region is not None:
+            return region.center
+        if name in self.poses:
+            return self.poses[name]
+        raise WorldError(f"{name!r} is not a cube, region or pose of this scene")
+
+    def is_near(self, name: str) -> bool:
+        if name in self.sim.cubes and not self.present(name):
+            return False
+        return distance(self.base, self.location(name)) <= self.scene.near
+
+    def on(self, cube: str, place: str) -> bool:
+        """`cube` came to rest inside region `place`, or at pose `place`."""
+        if not self.resting(cube):
+            return False
+        at = self.location(cube)
+        region = self.scene.region(place)
+        if region is not None:
+            return region.contains(*at)
+        if place in self.poses:
+            return distance(at, self.poses[place]) <= 0.1
+        return False
+
+    def move_base(self, pose: Pose2) -> None:
+        self.sim.set_robot(pose)
+
+    def released(self, cube: str) -> None:
+        """A cube the robot put down off a path no longer blocks it once out of the hand."""
+        self.handled += 1
+        for traj in self.trajectories.values():
+            if cube in traj.clearing and not self.on_path(cube, traj.path, 0):
+                traj.clearing.discard(cube)
+
+    def put(self, cube: str, spot: Point | None) -> None:
+        """Teleport a cube to the floor (None takes it out of the scene): tests and events."""
+        self.sim.place_cube(cube, spot)
+        if spot is not None:
+            for traj in self.trajectories.values():
+                if cube in traj.clearing and not self.on_path(cube, traj.path, 0):
+                    traj.clearing.discard(cube)
+        else:
+            for traj in self.trajectories.values():
+                traj.clearing.discard(cube)
+
+    def layout(self) -> tuple[object, ...]:
+        """What the robot itself changed: a path planned before it moved a cube is stale.
+
+        A cube moved by someone else is deliberately not part of it: the stored path is
+        checked against it, so an obstacle that appears on the way blocks the path.
+        """
+        return (self.held, self.handled)
+
+    def on_path(self, cube: str, path: tuple[Pose2, ...], start: int) -> bool:
+        if not path or not self.present(cube):
+            return False
+        at = self.location(cube)
+        reach = self.scene.robot_radius + self.scene.cube_size
+        rest = path[start:]
+        if clearance(at, rest) > reach:
+            return False
+        return any(self.sim.base_hits(q[0], q[1], [cube]) for q in rest[::2] + rest[-1:])
+
+    def path_blockers(self, traj: Trajectory, start: int = 0) -> set[str]:
+        """Cubes on the floor on the rest of the path, and cleared obstacles still in hand."""
+        held = self.held
+        found = {c for c in self.floor_cubes(traj.target, held)
+                 if self.on_path(c, traj.path, start)}
+        if held is not None and held in traj.clearing:
+            found.add(held)
+        return found
+
+    def blockers(self, traj: Trajectory) -> set[str]:
+        if not traj.path:
+            return {"(no path)"}
+        return self.path_blockers(traj)
+
+    def close(self) -> None:
+        self.sim.close()

@@ -1,0 +1,102 @@
+"""More scenes than the scripted run: other seeds, a cube taken while the arm reaches for
+it, an obstacle put back after it was cleared, and a run that cannot succeed.
+
+Each ends with the goal reached, or with a clear error naming what failed.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from sim_scenes import YOUBOT, YOUBOT_SCENE, write_scene, youbot_task
+from test_youbot_scenario import act, names
+from typer.testing import CliRunner
+
+from btplan.cli import app
+from btplan.worlds.pybullet import open_world
+
+TASK = youbot_task()
+NO_EVENTS = YOUBOT_SCENE.read_text(encoding="utf-8").split("[[event]]")[0]
+
+
+@pytest.mark.slow
+def test_another_seed_clears_blue_first_and_reaches_the_goal() -> None:
+    """bench/sim.py runs seeds 0-9; here one more, after other runs in the same process."""
+    world = open_world(TASK, str(YOUBOT_SCENE), seed=1)
+    try:
+        loop, sizes, _ = act(world)
+        cleared = [a.args[0] for a in world.executed if a.name == "ClearPath"]
+        assert cleared[0] == "blue" and set(cleared) <= {"blue", "red", "yellow"}
+        assert names(world.executed)[-2:] == ["MoveTo(goal)", "Place(green, goal)"]
+        assert sizes == sorted(sizes)
+    finally:
+        world.close()
+
+
+TAKEN = """
+[[event]]
+name = "agent takes green from under the hand"
+when = "near(green)"
+delay = 4
+do = "move"
+cube = "green"
+to = [3.0, -1.0]
+"""
+
+
+def test_a_cube_taken_while_the_arm_reaches_for_it_is_followed_and_picked(
+        tmp_path: Path) -> None:
+    world = open_world(TASK, write_scene(tmp_path, events=TAKEN), seed=1)
+    try:
+        loop, _, _ = act(world, 400)
+        # The cube left from under the fingers: near(green) turned false, Pick was halted.
+        assert names(world.halted) == ["Pick(green)"] and world.failed == []
+        assert names(world.executed) == ["MoveTo(green)", "MoveTo(green)", "Pick(green)",
+                                         "MoveTo(goal)", "Place(green, goal)"]
+        assert [e.condition for e in loop.expansions] == [  # none for the disturbance
+            "on(green, goal)", "holding(green)", "near(green)", "near(goal)"]
+    finally:
+        world.close()
+
+
+PUT_BACK = NO_EVENTS + """
+[[event]]
+name = "agent puts blue back in the doorway"
+when = "on(blue, storage)"
+delay = 10
+do = "move"
+cube = "blue"
+to = [4.0, 0.0]
+"""
+
+
+@pytest.mark.slow
+def test_an_obstacle_put_back_after_it_was_cleared_is_cleared_again(tmp_path: Path) -> None:
+    world = open_world(TASK, write_scene(tmp_path, PUT_BACK), seed=0)
+    try:
+        loop, sizes, _ = act(world)
+        cleared = [a.args[0] for a in world.executed if a.name == "ClearPath"]
+        assert cleared == ["blue", "blue"]
+        assert sizes == sorted(sizes)
+        assert world.check(("on", ("green", "goal")))
+    finally:
+        world.close()
+
+
+GONE = """
+[[event]]
+name = "agent takes green away for good"
+when = "near(green)"
+delay = 2
+do = "teleport"
+cube = "green"
+"""
+
+
+def test_a_goal_cube_taken_away_for_good_ends_with_exit_1_naming_it(tmp_path: Path) -> None:
+    result = CliRunner().invoke(app, ["run", str(YOUBOT), "--sim", "pybullet", "--quiet",
+                                      "--scenario", write_scene(tmp_path, events=GONE),
+                                      "--max-ticks", "300"])
+    assert result.exit_code == 1, result.output
+    assert "green" in result.output
