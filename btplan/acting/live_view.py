@@ -20,8 +20,8 @@ from rich.table import Table
 from rich.text import Text
 from rich.tree import Tree
 
-from btplan.bt import Node, Status
 from btplan.acting.records import TickRecord
+from btplan.bt import Node, Status
 from btplan.worlds.agents import Disturbance
 
 STYLE = {

@@ -16,10 +16,11 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
+from btplan.acting.loop import BlendedLoop, Expansion, TickReport
+
 # Acting with disturbances (`btplan.run`) lives in btplan.acting.online; re-exported here.
 from btplan.acting.online import RunOutcome as RunOutcome  # noqa: PLC0414
 from btplan.acting.online import run as run  # noqa: PLC0414
-from btplan.acting.loop import BlendedLoop, Expansion, TickReport
 from btplan.bt import BehaviorTree, LeafKey
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task

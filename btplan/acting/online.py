@@ -14,12 +14,12 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from btplan.acting.loop import BlendedLoop, Expansion, TickReport
+from btplan.acting.records import ExpansionNote, RunSummary, TickRecord, summarize
 from btplan.bt import FAILURE, BehaviorTree, Node, Status
 from btplan.bt.trace import TickRecorder
 from btplan.errors import PlanningError
 from btplan.model import Atom, GroundAction, Task
 from btplan.planner import PlannerOptions
-from btplan.acting.records import ExpansionNote, RunSummary, TickRecord, summarize
 from btplan.worlds.agents import Agent, act_all, agents_from_specs, check_world
 from btplan.worlds.disturb import DisturbSpec, check_specs, parse_spec
 from btplan.worlds.symbolic import SymbolicWorld

@@ -11,8 +11,8 @@ from rich.markup import escape
 
 from btplan.bt.formats import dump, json_schema, load_tree
 from btplan.cli.app import app, guarded, stderr
-from btplan.errors import InputError, Span
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
+from btplan.errors import InputError, Span
 from btplan.io import read_text
 
 

@@ -54,7 +54,7 @@ def plain(command: Any) -> None:
     options), so the method that lists them is wrapped rather than the list changed.
     """
     listed = command.get_params
-    setattr(command, "get_params", lambda ctx: [_plain_param(p) for p in listed(ctx)])
+    command.get_params = lambda ctx: [_plain_param(p) for p in listed(ctx)]
     for sub in getattr(command, "commands", {}).values():
         plain(sub)
 

@@ -11,8 +11,8 @@ from typing import Annotated
 import typer
 from rich.markup import escape
 
-from btplan.acting.offline import PlanResult, load, plan
 from btplan.acting.loop import Expansion
+from btplan.acting.offline import PlanResult, load, plan
 from btplan.bt import BehaviorTree
 from btplan.bt.formats import dump
 from btplan.cli.app import app, guarded, stderr

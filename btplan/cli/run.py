@@ -16,18 +16,18 @@ from rich.markup import escape
 from rich.table import Table
 
 from btplan import acting
+from btplan.acting.live_view import LiveView
+from btplan.acting.records import TickRecord
 from btplan.bt import Node, Status
 from btplan.cli.app import EXIT_FAILED, app, guarded, stderr
 from btplan.cli.interrupts import Interrupts
 from btplan.cli.outputs import STDIO, LineStream, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Span, WorldError
 from btplan.io import read_text
-from btplan.acting.live_view import LiveView
 from btplan.model import Task
-from btplan.acting.records import TickRecord
+from btplan.shipped import resolve
 from btplan.worlds.agents import Agent
 from btplan.worlds.disturb import DisturbSpec, parse_scenario, parse_spec
-from btplan.shipped import resolve
 
 
 class Sim(str, Enum):

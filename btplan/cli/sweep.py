@@ -6,7 +6,6 @@ import os
 from typing import Annotated, Any
 
 import typer
-from typer.core import TyperCommand
 from rich.markup import escape
 from rich.progress import (
     BarColumn,
@@ -16,6 +15,7 @@ from rich.progress import (
     TimeElapsedColumn,
     TimeRemainingColumn,
 )
+from typer.core import TyperCommand
 
 from btplan.acting.baselines import BASELINES, require_pyperplan
 from btplan.cli.app import app, guarded, stderr

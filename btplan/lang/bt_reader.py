@@ -14,7 +14,6 @@ from lark.exceptions import UnexpectedInput, VisitError
 
 from btplan.errors import InputError
 from btplan.lang.diagnostics import syntax_error
-from btplan.limits import BT_BRACKETS, check_nesting, check_size
 from btplan.lang.syntax import (
     ActionSyntax,
     DomainSyntax,
@@ -27,6 +26,7 @@ from btplan.lang.syntax import (
     Source,
     TypedSyntax,
 )
+from btplan.limits import BT_BRACKETS, check_nesting, check_size
 from btplan.model import EQUALITY
 
 GRAMMAR_PACKAGE = "btplan.grammar"

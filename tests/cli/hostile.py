@@ -20,7 +20,6 @@ from typing import Any
 
 import typer
 import typer.main
-
 from hypothesis import HealthCheck, settings
 from typer.testing import CliRunner
 

@@ -69,7 +69,7 @@ def options(cmd: Any) -> dict[str, str | None]:
 
 def usage(path: list[str]) -> str:
     result = runner.invoke(app, [*path, "--help"], env={"COLUMNS": "200"})
-    match = re.search(r"Usage: (.*?)\s*$", result.stdout, re.M)
+    match = re.search(r"Usage: (.*?)\s*$", result.stdout, re.MULTILINE)
     assert match, result.stdout
     return match.group(1)
 

@@ -166,8 +166,7 @@ def test_a_signal_during_generate_writes_nothing(tmp_path: Path,
                                                 monkeypatch: pytest.MonkeyPatch) -> None:
     from typer.testing import CliRunner
 
-    import btplan.cli.generate as generate
-    from btplan.cli import app
+    from btplan.cli import app, generate
 
     real = generate.gripper
 

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from btplan.acting.online import run
 from btplan.acting.offline import load
+from btplan.acting.online import run
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 OBSTACLE = load(str(DOMAINS / "pick_place_obstacle.bt"))

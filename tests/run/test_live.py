@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from rich.console import Console
 
-from btplan.bt import FAILURE, RUNNING, Action, Condition, Fallback, Sequence
 from btplan.acting.live_view import LiveView, frame
 from btplan.acting.records import ExpansionNote, TickRecord
+from btplan.bt import FAILURE, RUNNING, Action, Condition, Fallback, Sequence
 from btplan.worlds.agents import Disturbance
 
 

@@ -11,10 +11,10 @@ from __future__ import annotations
 from collections.abc import Mapping
 from pathlib import Path
 
-from btplan.acting.online import RunOutcome, run
 from btplan.acting.offline import load
-from btplan.bt import Action, Node, Status
+from btplan.acting.online import RunOutcome, run
 from btplan.acting.records import TickRecord
+from btplan.bt import Action, Node, Status
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 PICK_PLACE = load(str(DOMAINS / "pick_place.bt"))

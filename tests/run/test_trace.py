@@ -5,8 +5,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from btplan.acting.online import run
 from btplan.acting.offline import load
+from btplan.acting.online import run
 from btplan.acting.records import records_to_jsonl
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"

@@ -205,7 +205,7 @@ def load_json(text: str, path: str = "<tree>") -> BehaviorTree:
     except json.JSONDecodeError as error:
         raise InputError(f"not valid JSON: {error.msg}", Span(path, error.lineno, error.colno),
                          source_line=line_at(text, error.lineno)) from None
-    except ValueError as error:  # an integer past Python's digit limit for int()
+    except ValueError:  # an integer past Python's digit limit for int()
         digits = re.search(r"\d{%d,}" % (sys.get_int_max_str_digits() + 1), text)
         raise located(text, path, digits.start() if digits else 0,
                       "not valid JSON: a number with too many digits") from None

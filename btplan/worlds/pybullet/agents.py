@@ -12,6 +12,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from difflib import get_close_matches
 from pathlib import Path
+
 from btplan.errors import InputError, Span
 from btplan.limits import shorten
 from btplan.worlds.agents import Disturbance

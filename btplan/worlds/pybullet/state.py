@@ -17,7 +17,6 @@ from btplan.worlds.pybullet.paths import Trajectory
 from btplan.worlds.pybullet.scene import Point, Scene
 from btplan.worlds.pybullet.sim import HZ, Sim
 
-
 REST_HEIGHT = 0.01   # metres above its resting height a cube on the floor may be
 REST_SPEED = 0.25    # m/s: slower than this, a cube on the floor has landed (it may still settle)
 LIFTED = 0.004       # metres above its resting height a held cube must be

@@ -16,11 +16,11 @@ from btplan.errors import WorldError
 from btplan.model import ActionTemplate, Atom, GroundAction, Parameter, Task, instantiate
 from btplan.worlds.pybullet import motion, samplers
 from btplan.worlds.pybullet.agents import SceneAgents
+from btplan.worlds.pybullet.arm import Timings
 from btplan.worlds.pybullet.conditions import Conditions, Key
 from btplan.worlds.pybullet.refine import refine_values
 from btplan.worlds.pybullet.routes import Routes
 from btplan.worlds.pybullet.scene import Scene
-from btplan.worlds.pybullet.arm import Timings
 from btplan.worlds.pybullet.skills import ClearPath, Scripted, Skill, move_to, pick, put_down
 from btplan.worlds.pybullet.state import SceneState
 
