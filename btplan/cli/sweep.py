@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
+from collections.abc import Iterator
+from types import FrameType
 from typing import Annotated, Any
 
 import typer
@@ -26,7 +30,29 @@ from btplan.sweep import output, pool
 from btplan.sweep.runs import Job, Row, check_methods, prepared
 from btplan.sweep.stats import summarize
 
-EXIT_INTERRUPTED = 130
+
+
+@contextlib.contextmanager
+def _terminate_like_ctrl_c() -> Iterator[list[int]]:
+    """SIGTERM ends the sweep as Ctrl-C does: the rows done so far are written.
+
+    Yields the list that receives the signal's number, for the exit code (128 + it).
+    """
+    received: list[int] = []
+
+    def stop(signum: int, frame: FrameType | None) -> None:
+        received.append(signum)
+        raise KeyboardInterrupt
+
+    try:
+        previous = signal.signal(signal.SIGTERM, stop)
+    except ValueError:  # not the main thread: leave signals alone
+        yield received
+        return
+    try:
+        yield received
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def parse_seeds(text: str) -> range:
@@ -118,7 +144,7 @@ def sweep(
     """Run every method on every seed at every rate; write the rows and print medians.
 
     Exit 0 when every run ended (reached or not), 1 when some runs crashed (error
-    rows), 2 on bad input, 130 on Ctrl-C (the rows done so far are written).
+    rows), 2 on bad input, 130 on Ctrl-C and 143 on SIGTERM (the rows done so far are written).
     """
     files = [domain] if problem is None else [domain, problem]
     check_outputs(Output("-o/--output", output_path), Output("--plot", plot))
@@ -148,13 +174,14 @@ def sweep(
             progress.advance(task)
 
         try:
-            if ray is not None:
-                pool.run_ray(job, runs, on_row, None if ray == LOCAL else ray,
-                             jobs or None)
-            elif (jobs or os.cpu_count() or 1) == 1 and timeout is None:
-                pool.run_serial(job, runs, on_row)
-            else:  # a run that must be stopped needs a process of its own
-                pool.run_local(job, runs, on_row, jobs or os.cpu_count() or 1, timeout)
+            with _terminate_like_ctrl_c() as terminated:
+                if ray is not None:
+                    pool.run_ray(job, runs, on_row, None if ray == LOCAL else ray,
+                                 jobs or None)
+                elif (jobs or os.cpu_count() or 1) == 1 and timeout is None:
+                    pool.run_serial(job, runs, on_row)
+                else:  # a run that must be stopped needs a process of its own
+                    pool.run_local(job, runs, on_row, jobs or os.cpu_count() or 1, timeout)
         except KeyboardInterrupt:
             interrupted = True
     output.write_rows(output_path, rows)
@@ -165,7 +192,7 @@ def sweep(
     if interrupted:
         stderr.print(f"[bold red]interrupted:[/] {len(rows)} of {len(runs)} runs written "
                      f"to {escape(output_path)}")
-        raise typer.Exit(EXIT_INTERRUPTED)
+        raise typer.Exit(128 + (terminated[0] if terminated else signal.SIGINT))
     errors = [r for r in rows if r["error"]]
     if errors:
         stderr.print(f"[bold red]failed:[/] {len(errors)} runs crashed; first: "

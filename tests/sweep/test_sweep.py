@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import signal
 import sys
 from pathlib import Path
 from typing import Any
@@ -106,6 +108,26 @@ def test_ctrl_c_keeps_the_rows_already_done(tmp_path: Path,
     assert result.exit_code == 130
     assert [r["seed"] for r in read_rows(str(out))] == [0, 1]
     assert "2 of 5 runs written" in result.stderr
+
+
+def test_sigterm_keeps_the_rows_already_done_and_exits_143(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    serial, before = pool.run_serial, signal.getsignal(signal.SIGTERM)
+
+    def terminated(job: Job, runs: list[pool.Run], on_row: pool.OnRow) -> None:
+        serial(job, runs[:2], on_row)
+        os.kill(os.getpid(), signal.SIGTERM)
+        serial(job, runs[2:], on_row)  # never reached: the signal stops the sweep
+
+    monkeypatch.setattr(pool, "run_serial", terminated)
+    out = tmp_path / "rows.csv"
+    result = runner.invoke(app, ["sweep", OBSTACLE, "--scenario", "obstacle", "--seeds", "0:5",
+                                 "--rates", "0.1", "--method", "btplan", "-j", "1", "-o", str(out),
+                                 "-q"])
+    assert result.exit_code == 143
+    assert [r["seed"] for r in read_rows(str(out))] == [0, 1]
+    assert "2 of 5 runs written" in result.stderr
+    assert signal.getsignal(signal.SIGTERM) is before
 
 
 def test_parquet_rows_read_back(tmp_path: Path) -> None:
