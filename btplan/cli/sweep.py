@@ -26,6 +26,7 @@ from btplan.cli.app import app, guarded, stderr
 from btplan.cli.outputs import Output, check_outputs
 from btplan.cli.run import Sim
 from btplan.errors import InputError, Span
+from btplan.shipped import resolve
 from btplan.sweep import output, pool
 from btplan.sweep.runs import Job, Row, check_methods, prepared
 from btplan.sweep.stats import summarize
@@ -146,7 +147,7 @@ def sweep(
     Exit 0 when every run ended (reached or not), 1 when some runs crashed (error
     rows), 2 on bad input, 130 on Ctrl-C and 143 on SIGTERM (the rows done so far are written).
     """
-    files = [domain] if problem is None else [domain, problem]
+    files = [resolve(domain)] if problem is None else [resolve(domain), problem]
     check_outputs(Output("-o/--output", output_path), Output("--plot", plot))
     seed_range, rate_list = parse_seeds(seeds), parse_rates(rates)
     methods = [m.strip() for m in method.split(",") if m.strip()]

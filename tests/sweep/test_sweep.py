@@ -200,3 +200,13 @@ def test_a_run_past_the_timeout_becomes_an_error_row(
     assert result.exit_code == 1  # some runs crashed
     errors = {r["seed"]: r["error"] for r in read_rows(str(out))}
     assert errors == {0: "", 1: "Timeout: the run took more than 10 s", 2: ""}
+
+
+def test_a_shipped_domain_is_found_by_name(tmp_path: Path,
+                                           monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)
+    result = runner.invoke(app, ["sweep", "pick_place_obstacle", "--scenario", "obstacle",
+                                 "--seeds", "0:2", "--rates", "0", "--method", "btplan",
+                                 "-j", "1", "-o", "rows.csv", "-q"])
+    assert result.exit_code == 0, result.stderr
+    assert [r["seed"] for r in read_rows(str(tmp_path / "rows.csv"))] == [0, 1]
