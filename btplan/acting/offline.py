@@ -47,6 +47,8 @@ class PlanStats:
     rounds: int
     seconds: float
     premature_successes: int = 0
+    cost: float = 0.0
+    """The executed plan's cost: the sum of its actions' costs (its length in unit cost)."""
 
 
 @dataclass
@@ -192,4 +194,5 @@ def _stats(
         rounds=rounds,
         seconds=seconds,
         premature_successes=premature,
+        cost=sum(a.cost for a in world.executed),
     )

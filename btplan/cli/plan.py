@@ -94,7 +94,7 @@ def plan_command(
     text = dump(result.tree, chosen)
     write_atomic(out, text if text.endswith("\n") else text + "\n")
     if plan_out is not None:
-        write_atomic(plan_out, "".join(a.ipc() + "\n" for a in result.executed))
+        write_atomic(plan_out, plan_text(result, task.domain.has_costs))
     stderr.print(summary(result))
 
 
@@ -106,12 +106,19 @@ def default_format(out: str) -> str:
     return {"xml": "xml", "dot": "dot", "gv": "dot", "txt": "ascii"}.get(suffix, "json")
 
 
+def plan_text(result: PlanResult, general: bool) -> str:
+    """The executed actions in IPC plan format, ending with the cost line IPC tools write."""
+    kind = "general cost" if general else "unit cost"
+    steps = "".join(a.ipc() + "\n" for a in result.executed)
+    return steps + f"; cost = {result.stats.cost:g} ({kind})\n"
+
+
 def summary(result: PlanResult) -> str:
     s = result.stats
     return (
         f"[green]planned[/]: {s.expansions} expansions, {s.conflicts_resolved} conflicts "
         f"resolved ({s.moves} moves), tree of {s.tree_size} nodes, {s.actions_executed} actions "
-        f"executed, {s.seconds:.3f} s"
+        f"executed (cost {s.cost:g}), {s.seconds:.3f} s"
     )
 
 

@@ -52,7 +52,7 @@ class AchieverIndex:
         """`instantiate`, remembered: the same groundings come up on every expansion."""
         action = self._made.get((template.name, args))
         if action is None:
-            action = self._made[(template.name, args)] = instantiate(template, args)
+            action = self._made[(template.name, args)] = self.task.instantiate(template, args)
         return action
 
     def has_effect(self, condition: GroundLiteral) -> bool:

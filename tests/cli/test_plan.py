@@ -29,7 +29,8 @@ def test_plan_writes_tree_and_ipc_plan_files(tmp_path: Path) -> None:
     assert result.stdout == ""
     assert 'BTCPP_format="4"' in out.read_text()
     assert plan.read_text().splitlines() == [
-        "(moveto cube tau_cube)", "(pick cube)", "(moveto goal tau_goal)", "(place cube goal)"]
+        "(moveto cube tau_cube)", "(pick cube)", "(moveto goal tau_goal)", "(place cube goal)",
+        "; cost = 4 (unit cost)"]
 
 
 def test_trace_expansions_writes_one_dot_and_json_per_expansion(tmp_path: Path) -> None:
@@ -84,7 +85,8 @@ def test_plan_reads_pddl_domain_and_problem(tmp_path: Path) -> None:
     result = runner.invoke(app, ["plan", str(domain), str(problem), "-f", "ascii",
                                  "--plan-out", str(plan)])
     assert result.exit_code == 0, result.output
-    steps = plan.read_text().splitlines()
+    *steps, cost = plan.read_text().splitlines()
+    assert cost == f"; cost = {len(steps)} (unit cost)"
     assert steps and all(s.startswith("(") and s.endswith(")") for s in steps)
     assert {s.split()[0] for s in steps} <= {"(move", "(pick", "(drop"}
 
