@@ -274,8 +274,10 @@ class GroundAction(Frozen):
 
     def apply(self, state: frozenset[Atom]) -> frozenset[Atom]:
         """Delete first, then add: an effect list `not near(_), near(x)` ends with near(x)."""
-        kept = (a for a in state if a not in self.delete and not self._pattern_hit(a))
-        return frozenset(kept).union(self.add)
+        kept = state.difference(self.delete) if self.delete else state
+        if self.delete_patterns:
+            kept = frozenset(a for a in kept if not self._pattern_hit(a))
+        return kept.union(self.add)
 
     def _pattern_hit(self, atom: Atom) -> bool:
         return any(matches(p, atom) for p in self.delete_patterns)

@@ -48,7 +48,12 @@ from btplan.planner.expand import (
     non_circular,
     pursued,
 )
+from btplan.planner.lookahead import closest_first, keep_reachable, needed_later
 from btplan.planner.protect import white_knights
+
+
+ALL = 1 << 30
+"""A limit on achievers that keeps them all."""
 
 
 @dataclass
@@ -151,12 +156,13 @@ class BlendedLoop:
     def _expand(self) -> Expansion | None:
         state = self.world.facts()
         missing: list[GroundLiteral] = []
-        for node in failed_conditions(self.tree, self._expanded):
+        failed = failed_conditions(self.tree, self._expanded)
+        if self.options.closest_first and len(failed) > 1:
+            failed = closest_first(failed, self.index.relaxed, state)
+        for node in failed:
             literal = literal_of(node)
             assert literal is not None
-            achievers = self.index.achievers(literal, state, self.world.refine)
-            if self.options.refine_more:
-                achievers = non_circular(achievers, pursued(node))
+            achievers = self._achievers(node, literal, state)
             self._expanded.add(node)
             if not achievers:
                 self._dead.add(node)
@@ -169,6 +175,20 @@ class BlendedLoop:
         if missing:
             raise NoAchieverError(self._no_achiever_reason(missing))
         return None
+
+    def _achievers(
+        self, node: Node, literal: GroundLiteral, state: frozenset[Atom]
+    ) -> list[GroundAction]:
+        """Ranked achievers of a failed condition, without circular or dead-end ones."""
+        width = self.options.max_alternatives
+        if not self.options.avoid_dead_ends:
+            achievers = self.index.achievers(literal, state, self.world.refine)
+            return non_circular(achievers, pursued(node)) if self.options.refine_more else achievers
+        # Rank every candidate, so that dropping dead ends still leaves `width` of them.
+        achievers = self.index.achievers(literal, state, self.world.refine, ALL)
+        if self.options.refine_more:
+            achievers = non_circular(achievers, pursued(node))
+        return keep_reachable(achievers, needed_later(node), self.index.relaxed, state, width)
 
     def _no_achiever_reason(self, missing: list[GroundLiteral]) -> str:
         never = sorted({str(c) for c in missing if not self.index.has_effect(c)})

@@ -80,13 +80,14 @@ class AchieverIndex:
         then the number of preconditions that fail now; then the name, for ties.
         """
         found: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
+        reachable = self.relaxed.costs(state) if self.options.prune_bindings else None
         for template, effect in self._by_effect.get((condition.atom.predicate, condition.positive), []):
             partial = unify(self.task, template, effect, condition.atom, self.objects)
             if partial is None:
                 continue
             for binding in bindings(
                 self.task, template, partial, state, refine, self.options.max_bindings,
-                self.objects,
+                self.objects, reachable=reachable,
             ):
                 args = tuple(binding[p.name] for p in template.parameters)
                 action = self.ground(template, args)

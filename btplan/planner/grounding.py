@@ -10,7 +10,7 @@ parameter is asked of the refiner (the world backend) instead of enumerated.
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping
+from collections.abc import Container, Iterator, Mapping
 
 from btplan.model import EQUALITY, ActionTemplate, Atom, Literal, Parameter, Task
 from btplan.planner.protocol import Refiner
@@ -59,21 +59,31 @@ def bindings(
     limit: int,
     objects: Objects | None = None,
     optimistic: bool = False,
+    reachable: Container[Atom] | None = None,
 ) -> Iterator[dict[str, str]]:
     """Complete bindings of `template` extending `partial`, depth first, at most `limit`.
 
     Objects come sorted by name and refined values in the refiner's order, so the
     enumeration is deterministic. `optimistic` skips the checks on predicates that
     actions change (`where: blocks(s, t)`): false in one state, they may hold in a later
-    one, so a reachability estimate must not rule those bindings out.
+    one, so a reachability estimate must not rule those bindings out. With `reachable`
+    (the atoms reachable from the state, ignoring deletes), a positive precondition on
+    a changing predicate must be among them: such a binding could never run, and
+    enumerating it would use up `limit` before the bindings that can (a sandwich made
+    of bread already eaten).
     """
     table = objects or Objects(task)
     refined = {p.name for p in template.parameters if p.refined}
     # The world answers for refined values, `where` included: checks on them are its own.
     checks = tuple(c for c in static_checks(task, template) if not refined & set(c.args))
+    changing = task.domain.changed_predicates
     if optimistic:
-        changing = task.domain.changed_predicates
         checks = tuple(c for c in checks if c.predicate not in changing)
+    hopes: tuple[Literal, ...] = ()
+    if reachable is not None:
+        hopes = tuple(
+            p for p in template.preconditions
+            if p.positive and p.predicate in changing and not refined & set(p.args))
     names = {p.name for p in template.parameters}
     order = [p for p in template.parameters if p.name not in partial]
     # Enumerate ordinary parameters first: refiners usually need them bound.
@@ -96,7 +106,9 @@ def bindings(
         parameter = order[depth]
         for value in options(binding, parameter):
             binding[parameter.name] = value
-            if _consistent(checks, binding, names, parameter.name, state):
+            if _consistent(checks, binding, names, parameter.name, state) and (
+                not hopes or _consistent(hopes, binding, names, parameter.name, reachable or ())
+            ):
                 yield from extend(binding, depth + 1)
                 if count >= limit:
                     del binding[parameter.name]
@@ -106,6 +118,8 @@ def bindings(
     start = dict(partial)
     if not _consistent(checks, start, names, None, state):
         return
+    if hopes and not _consistent(hopes, start, names, None, reachable or ()):
+        return
     yield from extend(start, 0)
 
 
@@ -114,7 +128,7 @@ def _consistent(
     binding: Mapping[str, str],
     names: set[str],
     just_bound: str | None,
-    state: frozenset[Atom],
+    state: Container[Atom],
 ) -> bool:
     """True when every check that became decidable with `just_bound` holds."""
     for literal in checks:

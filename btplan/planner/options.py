@@ -20,7 +20,12 @@ class PlannerOptions:
     `refine_more` prunes circular and conflicting achievers and lets a failed,
     expanded condition gain achievers that fit a later state. `protect_goals` adds,
     before an achiever that would make a goal unreachable, a condition that keeps it
-    reachable (costly: plan() uses it as its last fallback). `PlannerOptions.paper()`
+    reachable (costly: plan() uses it as its last fallback). `closest_first` expands the
+    failed condition nearest to the state (h_add) instead of the first in breadth-first
+    order; `avoid_dead_ends` drops achievers that would make a condition the enclosing
+    sequences still need unreachable (btplan/planner/lookahead.py). `prune_bindings`
+    skips bindings with a precondition unreachable from the state while enumerating,
+    so `max_bindings` counts only bindings that could run. `PlannerOptions.paper()`
     turns every departure from the paper off, for comparison.
     """
 
@@ -32,10 +37,14 @@ class PlannerOptions:
     mutexes: bool = True
     refine_more: bool = True
     protect_goals: bool = False
+    closest_first: bool = True
+    avoid_dead_ends: bool = True
+    prune_bindings: bool = True
     stall_limit: int = 3
 
     @classmethod
     def paper(cls, **changes: Any) -> PlannerOptions:
         """Algorithms 1-3 as published: first-match order, no extensions."""
-        base = cls(heuristic=False, reorder_goals=False, mutexes=False, refine_more=False)
+        base = cls(heuristic=False, reorder_goals=False, mutexes=False, refine_more=False,
+                   closest_first=False, avoid_dead_ends=False, prune_bindings=False)
         return replace(base, **changes)
