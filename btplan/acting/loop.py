@@ -7,6 +7,7 @@ access of planning lives here; the planner steps in btplan.planner are plain fun
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -191,19 +192,26 @@ class BlendedLoop:
         return keep_reachable(achievers, needed_later(node), self.index.relaxed, state, width)
 
     def _no_achiever_reason(self, missing: list[GroundLiteral]) -> str:
+        """Say which kind of dead end it is: no achiever at all, or none from here."""
         never = sorted({str(c) for c in missing if not self.index.has_effect(c)})
         lost = sorted({str(c) for c in missing if self.index.has_effect(c)})
         parts = []
         if never:
-            parts.append("no action can make " + " or ".join(never) + " hold")
+            parts.append("no action of the domain can make " + " or ".join(never) + " hold")
         if lost:
             recent = [str(a) for a in getattr(self.world, "executed", [])[-4:]]
             parts.append(
-                "no action can make " + " or ".join(lost) + " hold from the current state:"
-                " every action achieving it needs something no action can bring about"
-                + (f" (last actions: {', '.join(recent)})" if recent else "")
+                f"stuck after {len(self.expansions)} expansions: no action can make "
+                + " or ".join(lost) + " hold from the state the tree led to (every achiever"
+                " needs something that can no longer be brought about, even ignoring deletes)"
+                + (f"; last actions: {', '.join(recent)}" if recent else "")
             )
         return "; ".join(parts)
+
+    def most_expanded(self, count: int = 3) -> str:
+        """The conditions expanded most often, `on(a, b) (7)`: where the search went round."""
+        tally = Counter(e.condition for e in self.expansions)
+        return ", ".join(f"{c} ({n})" for c, n in tally.most_common(count))
 
     def _reexpand(self, state: frozenset[Atom]) -> Expansion | None:
         """Give a failed, already expanded condition the achievers that apply now.
@@ -227,7 +235,7 @@ class BlendedLoop:
             if fresh and len(self.expansions) >= self.options.max_expansions:
                 raise BudgetExceededError(
                     f"the expansion budget ({self.options.max_expansions}) ran out "
-                    f"while {literal} still fails"
+                    f"while {literal} still fails; expanded most often: {self.most_expanded()}"
                 )
             grown = self._append_alternatives(fallback, fresh)
             if grown is not None:
@@ -284,7 +292,7 @@ class BlendedLoop:
         if len(self.expansions) >= self.options.max_expansions:
             raise BudgetExceededError(
                 f"the expansion budget ({self.options.max_expansions}) ran out "
-                f"while {literal} still fails"
+                f"while {literal} still fails; expanded most often: {self.most_expanded()}"
             )
         for action in achievers:
             self.grounding[action.key] = action

@@ -101,6 +101,9 @@ def plan(
     if found is not None:
         return found
     assert first_error is not None
+    if len(strategies) > 1:
+        first_error.reason += f" (and {len(strategies) - 1} fallback strategies failed too)"
+        first_error.args = (first_error.reason,)
     raise first_error
 
 
@@ -140,7 +143,10 @@ def _attempt(
 
     def watch(report: TickReport) -> None:
         if deadline is not None and time.perf_counter() > deadline:
-            raise BudgetExceededError(f"the time budget ({timeout:g} s) ran out")
+            raise BudgetExceededError(
+                f"time limit of {timeout:g} s reached after {len(loop.expansions)} expansions "
+                f"(tree of {len(loop.tree.nodes())} nodes); expanded most often: "
+                f"{loop.most_expanded() or 'nothing'}")
         if on_expansion is not None:
             for expansion in report.expansions:
                 on_expansion(loop.tree, expansion)

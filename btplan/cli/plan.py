@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+import time
 from dataclasses import replace
 from enum import Enum
 from pathlib import Path
@@ -12,12 +13,16 @@ import typer
 
 from btplan.acting.offline import PlanResult, load, plan
 from btplan.acting.loop import Expansion
-from btplan.bt import BehaviorTree
+from btplan.bt import FAILURE, BehaviorTree, Condition
 from btplan.bt.formats import dump
 from btplan.cli.app import app, guarded, stderr
 from btplan.errors import InputError, Span
 from btplan.io import STDIO, write_atomic
 from btplan.planner import PlannerOptions
+
+
+DEFAULT_TIMEOUT = 300.0
+"""Seconds `btplan plan` plans before it gives up, unless told otherwise."""
 
 
 class Format(str, Enum):
@@ -58,8 +63,8 @@ def plan_command(
     paper: Annotated[bool, typer.Option(
         "--paper", help="Algorithms 1-3 exactly as published, without btplan's extensions.")
     ] = False,
-    timeout: Annotated[float | None, typer.Option(
-        help="Give up after this many seconds.", show_default=False)] = None,
+    timeout: Annotated[float, typer.Option(
+        help="Give up after this many seconds (0: no limit).")] = DEFAULT_TIMEOUT,
 ) -> None:
     """Build a reactive BT for the problem by planning and acting in the symbolic world."""
     limits = [("--max-expansions", max_expansions), ("--max-ticks", max_ticks)]
@@ -68,22 +73,28 @@ def plan_command(
     for name, value in limits:
         if value < 1:
             raise InputError(f"{name} must be at least 1, got {value}")
-    if timeout is not None and timeout <= 0:
-        raise InputError(f"--timeout must be positive, got {timeout:g}")
+    if timeout < 0:
+        raise InputError(f"--timeout must be 0 (no limit) or positive, got {timeout:g}")
     folder = _trace_folder(trace_expansions)
     task = load(*([domain] if problem is None else [domain, problem]))
     chosen = fmt.value if fmt is not None else default_format(out)
     snapshots: list[tuple[str, str]] = []
 
+    progress = Progress()
+
     def trace(tree: BehaviorTree, expansion: Expansion) -> None:
         if folder is not None:
             snapshots.append((dump(tree, "dot"), dump(tree, "json")))
+        progress.update(tree)
 
     options = PlannerOptions.paper() if paper else None
     if max_alternatives is not None:
         options = replace(options or PlannerOptions(), max_alternatives=max_alternatives)
-    result = plan(task, seed=seed, max_expansions=max_expansions, max_ticks=max_ticks,
-                  timeout=timeout, options=options, on_expansion=trace)
+    try:
+        result = plan(task, seed=seed, max_expansions=max_expansions, max_ticks=max_ticks,
+                      timeout=timeout or None, options=options, on_expansion=trace)
+    finally:
+        progress.close()
     if folder is not None:
         # Only the attempt that succeeded: plan() may have started over with wider options.
         kept = snapshots[len(snapshots) - len(result.expansions):] if result.expansions else []
@@ -96,6 +107,40 @@ def plan_command(
     if plan_out is not None:
         write_atomic(plan_out, plan_text(result, task.domain.has_costs))
     stderr.print(summary(result))
+
+
+class Progress:
+    """One stderr line a second once planning has run for a second: expansions, tree
+    size, conditions open. On a terminal the line is rewritten in place."""
+
+    def __init__(self) -> None:
+        self.started = time.perf_counter()
+        self.shown = self.started
+        self.expansions = 0
+        self.terminal = sys.stderr.isatty()
+        self.dirty = False
+
+    def update(self, tree: BehaviorTree) -> None:
+        self.expansions += 1
+        now = time.perf_counter()
+        if now - self.shown < 1.0:
+            return
+        self.shown = now
+        nodes = tree.nodes()
+        open_ = sum(1 for n in nodes if n.status is FAILURE and isinstance(n, Condition))
+        line = (f"planning: {self.expansions} expansions, tree of {len(nodes)} nodes, "
+                f"{open_} conditions failing, {now - self.started:.0f} s")
+        if self.terminal:
+            sys.stderr.write("\r\x1b[2K" + line)
+            self.dirty = True
+        else:
+            sys.stderr.write(line + "\n")
+        sys.stderr.flush()
+
+    def close(self) -> None:
+        if self.dirty:
+            sys.stderr.write("\r\x1b[2K")
+            sys.stderr.flush()
 
 
 def default_format(out: str) -> str:

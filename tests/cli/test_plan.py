@@ -163,3 +163,11 @@ def test_output_format_follows_the_file_extension(tmp_path: Path) -> None:
         result = runner.invoke(app, ["plan", PICK, "-o", str(tmp_path / name)])
         assert result.exit_code == 0, result.output
         assert (tmp_path / name).read_text().lstrip().startswith(start)
+
+
+def test_timeout_zero_means_no_limit_and_a_negative_one_is_refused() -> None:
+    result = runner.invoke(app, ["plan", PICK, "--timeout", "0", "-f", "json"])
+    assert result.exit_code == 0, result.output
+    refused = runner.invoke(app, ["plan", PICK, "--timeout", "-1"])
+    assert refused.exit_code == 2
+    assert "--timeout must be 0 (no limit) or positive" in refused.stderr
