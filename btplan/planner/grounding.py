@@ -84,10 +84,15 @@ def bindings(
         hopes = tuple(
             p for p in template.preconditions
             if p.positive and p.predicate in changing and not refined & set(p.args))
-    names = {p.name for p in template.parameters}
     order = [p for p in template.parameters if p.name not in partial]
     # Enumerate ordinary parameters first: refiners usually need them bound.
     order.sort(key=lambda p: p.refined)
+    # Each check is made once, right after the last of its parameters is bound.
+    position = {p.name: i for i, p in enumerate(order)}
+    staged: list[list[tuple[Literal, Container[Atom]]]] = [[] for _ in range(len(order) + 1)]
+    for literal, facts in [*((c, state) for c in checks), *((h, reachable or ()) for h in hopes)]:
+        due = max((position[a] for a in literal.args if a in position), default=-1)
+        staged[due + 1].append((literal, facts))
     count = 0
 
     def options(binding: Mapping[str, str], parameter: Parameter) -> list[str]:
@@ -104,11 +109,10 @@ def bindings(
             yield dict(binding)
             return
         parameter = order[depth]
+        due = staged[depth + 1]
         for value in options(binding, parameter):
             binding[parameter.name] = value
-            if _consistent(checks, binding, names, parameter.name, state) and (
-                not hopes or _consistent(hopes, binding, names, parameter.name, reachable or ())
-            ):
+            if all(_holds(lit, binding, facts) for lit, facts in due):
                 yield from extend(binding, depth + 1)
                 if count >= limit:
                     del binding[parameter.name]
@@ -116,36 +120,19 @@ def bindings(
             del binding[parameter.name]
 
     start = dict(partial)
-    if not _consistent(checks, start, names, None, state):
-        return
-    if hopes and not _consistent(hopes, start, names, None, reachable or ()):
+    if not all(_holds(lit, start, facts) for lit, facts in staged[0]):
         return
     yield from extend(start, 0)
 
 
-def _consistent(
-    checks: tuple[Literal, ...],
-    binding: Mapping[str, str],
-    names: set[str],
-    just_bound: str | None,
-    state: Container[Atom],
-) -> bool:
-    """True when every check that became decidable with `just_bound` holds."""
-    for literal in checks:
-        if just_bound is not None and just_bound not in literal.args:
-            continue
-        if any(a in names and a not in binding for a in literal.args):
-            continue
-        args = tuple(binding.get(a, a) for a in literal.args)
-        if PLACEHOLDER in args:
-            continue
-        if literal.predicate == EQUALITY:
-            value = args[0] == args[1]
-        else:
-            value = Atom(literal.predicate, args) in state
-        if value is not literal.positive:
-            return False
-    return True
+def _holds(literal: Literal, binding: Mapping[str, str], facts: Container[Atom]) -> bool:
+    """Whether a check holds under a binding that covers its parameters."""
+    args = tuple([binding.get(a, a) for a in literal.args])
+    if PLACEHOLDER in args:
+        return True
+    if literal.predicate == EQUALITY:
+        return (args[0] == args[1]) is literal.positive
+    return (Atom(literal.predicate, args) in facts) is literal.positive
 
 
 def unify(

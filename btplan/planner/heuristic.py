@@ -13,11 +13,16 @@ preconditions cannot be reached at all.
 from __future__ import annotations
 
 import heapq
+from collections import deque
 import math
 from collections.abc import Callable, Iterable
 
 from btplan.model import ActionTemplate, Atom, GroundAction, Task, ground_literal, instantiate
 from btplan.planner.grounding import PLACEHOLDER, Objects, bindings
+
+
+COST_CACHE = 8
+"""States whose h_add costs are kept (planning goes back and forth between a few)."""
 
 
 class RelaxedModel:
@@ -50,15 +55,15 @@ class RelaxedModel:
         self._waiting = [len(set(pre)) for pre in self._pre]
         self._free = [i for i, n in enumerate(self._waiting) if n == 0]
         self._producers: dict[Atom, list[GroundAction]] | None = None
-        self._cache_state: frozenset[Atom] | None = None
-        self._cache: dict[Atom, float] = {}
+        self._cache: dict[frozenset[Atom], dict[Atom, float]] = {}
 
     def costs(self, state: frozenset[Atom]) -> dict[Atom, float]:
         """h_add cost of every reachable atom from `state` (generalised Dijkstra)."""
-        if state == self._cache_state:
-            return self._cache
+        cached = self._cache.get(state)
+        if cached is not None:
+            return cached
         cost: dict[Atom, float] = {a: 0.0 for a in state}
-        waiting = [len(set(pre)) for pre in self._pre]
+        waiting = list(self._waiting)
         queue: list[tuple[float, Atom]] = [(0.0, a) for a in sorted(state)]
         heapq.heapify(queue)
         done: set[Atom] = set()
@@ -78,7 +83,9 @@ class RelaxedModel:
                     fired[i] = True
                     total = sum(cost[p] for p in set(self._pre[i]))
                     self._relax(i, total, cost, queue)
-        self._cache_state, self._cache = state, cost
+        if len(self._cache) >= COST_CACHE:
+            del self._cache[next(iter(self._cache))]
+        self._cache[state] = cost
         return cost
 
     def _relax(
@@ -101,14 +108,14 @@ class RelaxedModel:
             return True
         waiting = list(self._waiting)
         reached = set(state)
-        frontier = list(state)
+        frontier = deque(state)
         for i in self._free:
             for atom in self.actions[i].add:
                 if atom not in reached:
                     reached.add(atom)
                     frontier.append(atom)
         while frontier:
-            atom = frontier.pop()
+            atom = frontier.popleft()
             missing.discard(atom)
             if not missing:
                 return True
