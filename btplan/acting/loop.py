@@ -96,18 +96,23 @@ class BlendedLoop:
     """
 
     def __init__(
-        self, task: Task, world: PlanningWorld, options: PlannerOptions | None = None
+        self,
+        task: Task,
+        world: PlanningWorld,
+        options: PlannerOptions | None = None,
+        like: AchieverIndex | None = None,
     ) -> None:
         self.task = task
         self.world = world
         self.options = options or PlannerOptions()
         self.tree = initial_tree(task)
-        self.index = AchieverIndex(task, self.options)
+        self.index = AchieverIndex(task, self.options, like)
         self.grounding: dict[LeafKey, GroundAction] = {}
         self.expansions: list[Expansion] = []
         self.ticks = 0
         self._expanded: set[Node] = set()
         self._dead: set[Node] = set()
+        self._circular: set[GroundLiteral] = set()
         self._seen: set[tuple[frozenset[Atom], int]] = set()
         self._last_state: frozenset[Atom] | None = None
         self._stalls = 0
@@ -184,18 +189,36 @@ class BlendedLoop:
         width = self.options.max_alternatives
         if not self.options.avoid_dead_ends:
             achievers = self.index.achievers(literal, state, self.world.refine)
-            return non_circular(achievers, pursued(node)) if self.options.refine_more else achievers
+            return self._non_circular(achievers, node, literal)
         # Rank every candidate, so that dropping dead ends still leaves `width` of them.
         achievers = self.index.achievers(literal, state, self.world.refine, ALL)
-        if self.options.refine_more:
-            achievers = non_circular(achievers, pursued(node))
+        achievers = self._non_circular(achievers, node, literal)
         return keep_reachable(achievers, needed_later(node), self.index.relaxed, state, width)
+
+    def _non_circular(
+        self, achievers: list[GroundAction], node: Node, literal: GroundLiteral
+    ) -> list[GroundAction]:
+        """Drop circular achievers (with refine_more), remembering when that left none."""
+        if not self.options.refine_more:
+            return achievers
+        kept = non_circular(achievers, pursued(node))
+        if achievers and not kept:
+            self._circular.add(literal)
+        return kept
 
     def _no_achiever_reason(self, missing: list[GroundLiteral]) -> str:
         """Say which kind of dead end it is: no achiever at all, or none from here."""
         never = sorted({str(c) for c in missing if not self.index.has_effect(c)})
-        lost = sorted({str(c) for c in missing if self.index.has_effect(c)})
+        circular = sorted({str(c) for c in missing if c in self._circular})
+        lost = sorted({str(c) for c in missing
+                       if self.index.has_effect(c) and c not in self._circular})
         parts = []
+        if circular:
+            parts.append(
+                f"stuck after {len(self.expansions)} expansions: every achiever of "
+                + " or ".join(circular) + " needs a condition that an enclosing fallback is"
+                " already trying to achieve (the tree chose an order it cannot complete;"
+                " the search, not the domain, is at fault)")
         if never:
             parts.append("no action of the domain can make " + " or ".join(never) + " hold")
         if lost:

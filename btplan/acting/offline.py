@@ -23,7 +23,7 @@ from btplan.acting.loop import BlendedLoop, Expansion, TickReport
 from btplan.bt import BehaviorTree, LeafKey
 from btplan.errors import BudgetExceededError, PlanningError
 from btplan.model import GroundAction, Task
-from btplan.planner import PlannerOptions
+from btplan.planner import AchieverIndex, PlannerOptions
 from btplan.worlds.symbolic import SymbolicWorld
 
 DEFAULT_MAX_TICKS = 100_000
@@ -84,10 +84,11 @@ def plan(
     strategies = [opts] if options is not None else fallback_strategies(opts)
     first_error: PlanningError | None = None
     found: PlanResult | None = None
+    models = AchieverIndex(task)  # the relaxed model and mutexes, built once for all
     for strategy in strategies:
         try:
             result = _attempt(task, seed, strategy, max_ticks, deadline, timeout, on_expansion,
-                              started)
+                              started, models)
         except BudgetExceededError:
             if found is not None:
                 return found
@@ -134,11 +135,12 @@ def _attempt(
     timeout: float | None,
     on_expansion: Callable[[BehaviorTree, Expansion], None] | None,
     started: float,
+    models: AchieverIndex,
 ) -> PlanResult:
     """Rounds of Algorithm 1 from the initial state until one needs no expansion."""
     groundings: dict[LeafKey, GroundAction] = {}
     world = SymbolicWorld(task, seed=seed, groundings=groundings)
-    loop = BlendedLoop(task, world, opts)
+    loop = BlendedLoop(task, world, opts, like=models)
     ticks_left = max_ticks
 
     def watch(report: TickReport) -> None:
