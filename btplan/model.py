@@ -304,7 +304,8 @@ def atoms(items: Iterable[tuple[str, tuple[str, ...]]]) -> frozenset[Atom]:
 
 def ground_literal(literal: Literal, binding: Mapping[str, str]) -> GroundLiteral:
     """Replace parameter names by their objects; constants and `_` stay as they are."""
-    args = tuple(binding.get(a, a) for a in literal.args)
+    get = binding.get
+    args = tuple([get(a, a) for a in literal.args])
     return GroundLiteral(Atom(literal.predicate, args), literal.positive)
 
 
@@ -335,7 +336,9 @@ def instantiate(
             patterns.append(atom)
         else:
             delete.append(atom)
-    return GroundAction(
+    # Built from checked templates, so pydantic's validation is skipped: grounding a
+    # domain makes thousands of these, and validating each cost more than building it.
+    return GroundAction.model_construct(
         name=template.name,
         args=tuple(args),
         port_names=tuple(p.name for p in template.parameters),

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
 from typer.testing import CliRunner
 
 from btplan.cli import app
@@ -171,3 +172,23 @@ def test_timeout_zero_means_no_limit_and_a_negative_one_is_refused() -> None:
     refused = runner.invoke(app, ["plan", PICK, "--timeout", "-1"])
     assert refused.exit_code == 2
     assert "--timeout must be 0 (no limit) or positive" in refused.stderr
+
+
+def test_progress_is_shown_once_a_second_after_the_first(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from btplan.acting.offline import load
+    from btplan.cli import plan as plan_module
+    from btplan.planner import initial_tree
+
+    clock = iter([0.0, 0.5, 1.2, 1.5, 2.4])
+    monkeypatch.setattr(plan_module.time, "perf_counter", lambda: next(clock))
+    progress = plan_module.Progress()
+    tree = initial_tree(load(PICK))
+    for _ in range(4):
+        progress.update(tree)
+    lines = capsys.readouterr().err.splitlines()
+    assert lines == [
+        "planning: 2 expansions, tree of 1 nodes, 0 conditions failing, 1 s",
+        "planning: 4 expansions, tree of 1 nodes, 0 conditions failing, 2 s",
+    ]
