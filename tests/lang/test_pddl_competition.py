@@ -116,3 +116,12 @@ def test_only_minimising_total_cost_is_a_metric(tmp_path: Path) -> None:
         load(write(tmp_path, problem=problem))
     assert "only '(:metric minimize (total-cost))' is supported" in caught.value.message
     assert caught.value.span is not None and caught.value.span.line == 7
+
+
+def test_a_cost_read_from_a_function_is_not_silently_dropped_on_export(tmp_path: Path) -> None:
+    from btplan.lang.writers import bt_domain, pddl_domain
+
+    task = load(write(tmp_path))
+    for writer in (bt_domain, pddl_domain):
+        with pytest.raises(InputError, match="cannot be written"):
+            writer(task.domain)
