@@ -56,6 +56,19 @@ from btplan.planner.protect import white_knights
 ALL = 1 << 30
 """A limit on achievers that keeps them all."""
 
+BACKTRACKS = 2
+"""Further batches of achievers tried when the first has no conflict-free place."""
+
+
+def _unexpand(tree: BehaviorTree, subtree: Fallback, condition: Node) -> None:
+    """Undo ExpandTree: put the condition back where its atomic BT stands."""
+    subtree.remove(condition)
+    parent = subtree.parent
+    if parent is None:
+        tree.root = condition
+        return
+    parent.replace(subtree, condition)
+
 
 @dataclass
 class Expansion:
@@ -168,13 +181,13 @@ class BlendedLoop:
         for node in failed:
             literal = literal_of(node)
             assert literal is not None
-            achievers = self._achievers(node, literal, state)
+            achievers, spare = self._achievers(node, literal, state)
             self._expanded.add(node)
             if not achievers:
                 self._dead.add(node)
                 missing.append(literal)
                 continue
-            return self._apply(node, literal, achievers)
+            return self._apply(node, literal, achievers, spare)
         more = self._reexpand(state) if self.options.refine_more else None
         if more is not None:
             return more
@@ -184,16 +197,18 @@ class BlendedLoop:
 
     def _achievers(
         self, node: Node, literal: GroundLiteral, state: frozenset[Atom]
-    ) -> list[GroundAction]:
-        """Ranked achievers of a failed condition, without circular or dead-end ones."""
+    ) -> tuple[list[GroundAction], list[GroundAction]]:
+        """Ranked achievers of a failed condition, without circular or dead-end ones,
+        and the ranked candidates left over (for backtracking)."""
         width = self.options.max_alternatives
         if not self.options.avoid_dead_ends:
             achievers = self.index.achievers(literal, state, self.world.refine)
-            return self._non_circular(achievers, node, literal)
+            return self._non_circular(achievers, node, literal), []
         # Rank every candidate, so that dropping dead ends still leaves `width` of them.
         achievers = self.index.achievers(literal, state, self.world.refine, ALL)
         achievers = self._non_circular(achievers, node, literal)
-        return keep_reachable(achievers, needed_later(node), self.index.relaxed, state, width)
+        kept = keep_reachable(achievers, needed_later(node), self.index.relaxed, state, width)
+        return kept, [a for a in achievers if a not in kept]
 
     def _non_circular(
         self, achievers: list[GroundAction], node: Node, literal: GroundLiteral
@@ -309,24 +324,43 @@ class BlendedLoop:
         return expansion
 
     def _apply(
-        self, node: Node, literal: GroundLiteral, achievers: list[GroundAction]
+        self, node: Node, literal: GroundLiteral, achievers: list[GroundAction],
+        spare: list[GroundAction] | None = None,
     ) -> Expansion:
-        """ExpandTree (Algorithm 2), then IncreasePriority while in conflict (lines 11-12)."""
+        """ExpandTree (Algorithm 2), then IncreasePriority while in conflict (lines 11-12).
+
+        With `backtrack`, when no place is free of conflicts, the subtree is taken out
+        again and the next-ranked achievers are tried instead (up to BACKTRACKS more
+        batches): another way of achieving the condition may fit where this one cannot.
+        """
         if len(self.expansions) >= self.options.max_expansions:
             raise BudgetExceededError(
                 f"the expansion budget ({self.options.max_expansions}) ran out "
                 f"while {literal} still fails; expanded most often: {self.most_expanded()}"
             )
-        for action in achievers:
-            self.grounding[action.key] = action
-        subtree = expand_tree(self.tree, node, achievers, self.task)
-        if self.options.protect_goals:
-            self._protect(subtree)
-        resolution = resolve_conflicts(
-            self.tree, subtree, self._judge(), self.options.reorder_goals,
-            self.options.refine_more,
-        )
-        return self._record(literal, achievers, len(resolution.conflicts), resolution.moves)
+        width = self.options.max_alternatives
+        batches = [achievers]
+        if self.options.backtrack and spare:
+            batches += [spare[i:i + width] for i in range(0, len(spare), width)][:BACKTRACKS]
+        first: UnresolvableConflictError | None = None
+        for batch in batches:
+            for action in batch:
+                self.grounding[action.key] = action
+            subtree = expand_tree(self.tree, node, batch, self.task)
+            if self.options.protect_goals:
+                self._protect(subtree)
+            try:
+                resolution = resolve_conflicts(
+                    self.tree, subtree, self._judge(), self.options.reorder_goals,
+                    self.options.refine_more,
+                )
+            except UnresolvableConflictError as error:
+                first = first or error
+                _unexpand(self.tree, subtree, node)
+                continue
+            return self._record(literal, batch, len(resolution.conflicts), resolution.moves)
+        assert first is not None
+        raise first
 
     def _protect(self, subtree: Fallback) -> None:
         """Check, before each new achiever, what keeps the other goals reachable."""

@@ -25,7 +25,9 @@ class PlannerOptions:
     order; `avoid_dead_ends` drops achievers that would make a condition the enclosing
     sequences still need unreachable (btplan/planner/lookahead.py). `prune_bindings`
     skips bindings with a precondition unreachable from the state while enumerating,
-    so `max_bindings` counts only bindings that could run. `PlannerOptions.paper()`
+    so `max_bindings` counts only bindings that could run. `backtrack` tries the
+    next-ranked achievers when the chosen ones have no conflict-free place.
+    `PlannerOptions.paper()`
     turns every departure from the paper off, for comparison.
     """
 
@@ -40,11 +42,13 @@ class PlannerOptions:
     closest_first: bool = True
     avoid_dead_ends: bool = True
     prune_bindings: bool = True
+    backtrack: bool = True
     stall_limit: int = 3
 
     @classmethod
     def paper(cls, **changes: Any) -> PlannerOptions:
         """Algorithms 1-3 as published: first-match order, no extensions."""
         base = cls(heuristic=False, reorder_goals=False, mutexes=False, refine_more=False,
-                   closest_first=False, avoid_dead_ends=False, prune_bindings=False)
+                   closest_first=False, avoid_dead_ends=False, prune_bindings=False,
+                   backtrack=False)
         return replace(base, **changes)
