@@ -13,6 +13,8 @@ are validated against the domain before they count as solved.
     python bench/planning.py --domains gripper --sizes 4,8,16
     python bench/planning.py --versus-paper         # btplan's defaults against Algorithms 1-3
                                                     # as published (docs/planner.md)
+    python bench/planning.py --corpus DIR           # competition-layout domains, whole
+                                                    # processes, beside peers (bench/corpus.py)
 """
 
 from __future__ import annotations
@@ -263,7 +265,22 @@ def main() -> None:
     parser.add_argument("--plot", help="write a PNG of time against size here")
     parser.add_argument("--versus-paper", action="store_true",
                         help="compare with Algorithms 1-3 as published instead")
+    parser.add_argument("--corpus", help="a folder of competition-layout domain folders")
+    parser.add_argument("--per-domain", type=int, default=3,
+                        help="with --corpus: the N smallest problems of each domain")
+    parser.add_argument("--planners", default="btplan,pyperplan,fd",
+                        help="with --corpus: planners to run (fd needs the 'fd' extra)")
+    parser.add_argument("--only", help="with --corpus: comma-separated domain folders")
     args = parser.parse_args()
+    if args.corpus:
+        from corpus import bench_corpus, report
+
+        planners = args.planners.split(",")
+        cases = bench_corpus(Path(args.corpus), planners, args.per_domain, args.timeout,
+                             args.only.split(",") if args.only else None)
+        print()
+        print("\n".join(report(cases, planners, args.timeout)))
+        return
     if args.versus_paper:
         versus_paper(min(args.timeout, 10.0))
         return

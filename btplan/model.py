@@ -10,6 +10,7 @@ This module imports nothing else from btplan.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Mapping
 from functools import cached_property
 from typing import NamedTuple
@@ -96,6 +97,9 @@ class ActionTemplate(Frozen):
     preconditions: tuple[Literal, ...] = ()
     effects: tuple[Literal, ...] = ()
     cost: float = 1.0
+    cost_term: Literal | None = None
+    """When set, the cost is this static function's value under the binding, as in PDDL's
+    `(increase (total-cost) (road-length ?from ?to))`; `cost` is then unused."""
     duration: int = 1
 
     @property
@@ -114,6 +118,14 @@ class Domain(Frozen):
     constants: tuple[TypedName, ...] = ()
     predicates: tuple[Predicate, ...] = ()
     actions: tuple[ActionTemplate, ...] = ()
+    functions: tuple[Predicate, ...] = ()
+    """Static numeric functions that give action costs (PDDL's `:action-costs`)."""
+
+    @property
+    def has_costs(self) -> bool:
+        """Whether plan cost is the sum of action costs rather than the plan's length."""
+        return ":action-costs" in self.requirements or any(
+            a.cost != 1.0 or a.cost_term is not None for a in self.actions)
 
     @cached_property
     def type_parents(self) -> Mapping[str, str | None]:
@@ -145,6 +157,14 @@ class Domain(Frozen):
         return frozenset(e.predicate for a in self.actions for e in a.effects)
 
 
+class FunctionValue(Frozen):
+    """The value of a static numeric function in a problem: `(= (road-length a b) 12)`."""
+
+    function: str
+    args: tuple[str, ...] = ()
+    value: float
+
+
 class Problem(Frozen):
     """Objects, initial facts and goal conditions; the goal is ground literals."""
 
@@ -153,6 +173,7 @@ class Problem(Frozen):
     objects: tuple[TypedName, ...] = ()
     init: tuple[Literal, ...] = ()
     goal: tuple[Literal, ...] = ()
+    values: tuple[FunctionValue, ...] = ()
 
 
 class Task(Frozen):
@@ -181,6 +202,15 @@ class Task(Frozen):
     @cached_property
     def goal_literals(self) -> tuple[GroundLiteral, ...]:
         return tuple(GroundLiteral(Atom(g.predicate, g.args), g.positive) for g in self.problem.goal)
+
+    @cached_property
+    def function_values(self) -> Mapping[Atom, float]:
+        """Static numeric functions (action costs) by their ground term."""
+        return {Atom(v.function, v.args): v.value for v in self.problem.values}
+
+    def instantiate(self, template: ActionTemplate, args: tuple[str, ...]) -> GroundAction:
+        """`instantiate` with this problem's action costs."""
+        return instantiate(template, args, self.function_values)
 
 
 # --- grounded forms -------------------------------------------------------------------------
@@ -244,8 +274,10 @@ class GroundAction(Frozen):
 
     def apply(self, state: frozenset[Atom]) -> frozenset[Atom]:
         """Delete first, then add: an effect list `not near(_), near(x)` ends with near(x)."""
-        kept = (a for a in state if a not in self.delete and not self._pattern_hit(a))
-        return frozenset(kept).union(self.add)
+        kept = state.difference(self.delete) if self.delete else state
+        if self.delete_patterns:
+            kept = frozenset(a for a in kept if not self._pattern_hit(a))
+        return kept.union(self.add)
 
     def _pattern_hit(self, atom: Atom) -> bool:
         return any(matches(p, atom) for p in self.delete_patterns)
@@ -272,15 +304,20 @@ def atoms(items: Iterable[tuple[str, tuple[str, ...]]]) -> frozenset[Atom]:
 
 def ground_literal(literal: Literal, binding: Mapping[str, str]) -> GroundLiteral:
     """Replace parameter names by their objects; constants and `_` stay as they are."""
-    args = tuple(binding.get(a, a) for a in literal.args)
+    get = binding.get
+    args = tuple([get(a, a) for a in literal.args])
     return GroundLiteral(Atom(literal.predicate, args), literal.positive)
 
 
-def instantiate(template: ActionTemplate, args: tuple[str, ...]) -> GroundAction:
+def instantiate(
+    template: ActionTemplate, args: tuple[str, ...], values: Mapping[Atom, float] | None = None
+) -> GroundAction:
     """Ground `template` with `args` given in parameter order.
 
     Equalities are binding constraints, not run-time conditions, so they are left out of
-    the preconditions whether they were written under `where` or under `pre`.
+    the preconditions whether they were written under `where` or under `pre`. A cost
+    given by a function takes its value from `values`; an undefined value makes the
+    action unusable (infinite cost), as PDDL makes it inapplicable.
     """
     if len(args) != len(template.parameters):
         raise ValueError(f"{template.name} takes {len(template.parameters)} arguments, got {len(args)}")
@@ -299,7 +336,9 @@ def instantiate(template: ActionTemplate, args: tuple[str, ...]) -> GroundAction
             patterns.append(atom)
         else:
             delete.append(atom)
-    return GroundAction(
+    # Built from checked templates, so pydantic's validation is skipped: grounding a
+    # domain makes thousands of these, and validating each cost more than building it.
+    return GroundAction.model_construct(
         name=template.name,
         args=tuple(args),
         port_names=tuple(p.name for p in template.parameters),
@@ -307,6 +346,16 @@ def instantiate(template: ActionTemplate, args: tuple[str, ...]) -> GroundAction
         add=tuple(add),
         delete=tuple(delete),
         delete_patterns=tuple(patterns),
-        cost=template.cost,
+        cost=_cost(template, binding, values),
         duration=template.duration,
     )
+
+
+def _cost(
+    template: ActionTemplate, binding: Mapping[str, str], values: Mapping[Atom, float] | None
+) -> float:
+    term = template.cost_term
+    if term is None:
+        return template.cost
+    atom = ground_literal(term, binding).atom
+    return (values or {}).get(atom, math.inf)

@@ -7,9 +7,10 @@ holds the per-tick records and the run summary; `live_view` draws them in a term
 
 from btplan.acting.loop import BlendedLoop, Expansion, TickReport
 from btplan.acting.offline import PlanResult, PlanStats, load, plan
-from btplan.acting.online import RunOutcome, run
+from btplan.acting.online import ACTING_OPTIONS, RunOutcome, run
 
 __all__ = [
+    "ACTING_OPTIONS",
     "BlendedLoop",
     "Expansion",
     "PlanResult",

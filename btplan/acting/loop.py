@@ -8,6 +8,7 @@ access of planning lives here; the planner steps in btplan.planner are plain fun
 from __future__ import annotations
 
 import time
+from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -49,7 +50,24 @@ from btplan.planner.expand import (
     non_circular,
     pursued,
 )
+from btplan.planner.lookahead import closest_first, keep_reachable, needed_later
 from btplan.planner.protect import white_knights
+
+ALL = 1 << 30
+"""A limit on achievers that keeps them all."""
+
+BACKTRACKS = 2
+"""Further batches of achievers tried when the first has no conflict-free place."""
+
+
+def _unexpand(tree: BehaviorTree, subtree: Fallback, condition: Node) -> None:
+    """Undo ExpandTree: put the condition back where its atomic BT stands."""
+    subtree.remove(condition)
+    parent = subtree.parent
+    if parent is None:
+        tree.root = condition
+        return
+    parent.replace(subtree, condition)
 
 
 @dataclass
@@ -93,18 +111,23 @@ class BlendedLoop:
     """
 
     def __init__(
-        self, task: Task, world: PlanningWorld, options: PlannerOptions | None = None
+        self,
+        task: Task,
+        world: PlanningWorld,
+        options: PlannerOptions | None = None,
+        like: AchieverIndex | None = None,
     ) -> None:
         self.task = task
         self.world = world
         self.options = options or PlannerOptions()
         self.tree = initial_tree(task)
-        self.index = AchieverIndex(task, self.options)
+        self.index = AchieverIndex(task, self.options, like)
         self.grounding: dict[LeafKey, GroundAction] = {}
         self.expansions: list[Expansion] = []
         self.ticks = 0
         self._expanded: set[Node] = set()
         self._dead: set[Node] = set()
+        self._circular: set[GroundLiteral] = set()
         self._seen: set[tuple[frozenset[Atom], int]] = set()
         self._last_state: frozenset[Atom] | None = None
         self._stalls = 0
@@ -162,18 +185,19 @@ class BlendedLoop:
     def _expand(self) -> Expansion | None:
         state = self.world.facts()
         missing: list[GroundLiteral] = []
-        for node in failed_conditions(self.tree, self._expanded):
+        failed = failed_conditions(self.tree, self._expanded)
+        if self.options.closest_first and len(failed) > 1:
+            failed = closest_first(failed, self.index.relaxed, state)
+        for node in failed:
             literal = literal_of(node)
             assert literal is not None
-            achievers = self.index.achievers(literal, state, self.world.refine)
-            if self.options.refine_more:
-                achievers = non_circular(achievers, pursued(node))
+            achievers, spare = self._achievers(node, literal, state)
             self._expanded.add(node)
             if not achievers:
                 self._dead.add(node)
                 missing.append(literal)
                 continue
-            return self._apply(node, literal, achievers)
+            return self._apply(node, literal, achievers, spare)
         more = self._reexpand(state) if self.options.refine_more else None
         if more is not None:
             return more
@@ -181,20 +205,61 @@ class BlendedLoop:
             raise NoAchieverError(self._no_achiever_reason(missing))
         return None
 
+    def _achievers(
+        self, node: Node, literal: GroundLiteral, state: frozenset[Atom]
+    ) -> tuple[list[GroundAction], list[GroundAction]]:
+        """Ranked achievers of a failed condition, without circular or dead-end ones,
+        and the ranked candidates left over (for backtracking)."""
+        width = self.options.max_alternatives
+        if not self.options.avoid_dead_ends:
+            achievers = self.index.achievers(literal, state, self.world.refine)
+            return self._non_circular(achievers, node, literal), []
+        # Rank every candidate, so that dropping dead ends still leaves `width` of them.
+        achievers = self.index.achievers(literal, state, self.world.refine, ALL)
+        achievers = self._non_circular(achievers, node, literal)
+        kept = keep_reachable(achievers, needed_later(node), self.index.relaxed, state, width)
+        return kept, [a for a in achievers if a not in kept]
+
+    def _non_circular(
+        self, achievers: list[GroundAction], node: Node, literal: GroundLiteral
+    ) -> list[GroundAction]:
+        """Drop circular achievers (with refine_more), remembering when that left none."""
+        if not self.options.refine_more:
+            return achievers
+        kept = non_circular(achievers, pursued(node))
+        if achievers and not kept:
+            self._circular.add(literal)
+        return kept
+
     def _no_achiever_reason(self, missing: list[GroundLiteral]) -> str:
+        """Say which kind of dead end it is: no achiever at all, or none from here."""
         never = sorted({str(c) for c in missing if not self.index.has_effect(c)})
-        lost = sorted({str(c) for c in missing if self.index.has_effect(c)})
+        circular = sorted({str(c) for c in missing if c in self._circular})
+        lost = sorted({str(c) for c in missing
+                       if self.index.has_effect(c) and c not in self._circular})
         parts = []
+        if circular:
+            parts.append(
+                f"stuck after {len(self.expansions)} expansions: every achiever of "
+                + " or ".join(circular) + " needs a condition that an enclosing fallback is"
+                " already trying to achieve (the tree chose an order it cannot complete;"
+                " the search, not the domain, is at fault)")
         if never:
-            parts.append("no action can make " + " or ".join(never) + " hold")
+            parts.append("no action of the domain can make " + " or ".join(never) + " hold")
         if lost:
             recent = [str(a) for a in getattr(self.world, "executed", [])[-4:]]
             parts.append(
-                "no action can make " + " or ".join(lost) + " hold from the current state:"
-                " every action achieving it needs something no action can bring about"
-                + (f" (last actions: {', '.join(recent)})" if recent else "")
+                f"stuck after {len(self.expansions)} expansions: no action can make "
+                + " or ".join(lost) + " hold from the state the tree led to (every achiever"
+                " needs something that can no longer be brought about, even ignoring deletes)"
+                + (f"; last actions: {', '.join(recent)}" if recent else "")
             )
         return "; ".join(parts)
+
+    def most_expanded(self, count: int = 3) -> str:
+        """The conditions expanded most often, `on(a, b) (7)`: where the search went round."""
+        tally = Counter(e.condition for e in self.expansions)
+        return ", ".join(f"{c} ({n})" for c, n in tally.most_common(count))
 
     def _reexpand(self, state: frozenset[Atom]) -> Expansion | None:
         """Give a failed, already expanded condition the achievers that apply now.
@@ -218,7 +283,7 @@ class BlendedLoop:
             if fresh and len(self.expansions) >= self.options.max_expansions:
                 raise BudgetExceededError(
                     f"the expansion budget ({self.options.max_expansions}) ran out "
-                    f"while {literal} still fails"
+                    f"while {literal} still fails; expanded most often: {self.most_expanded()}"
                 )
             grown = self._append_alternatives(fallback, fresh)
             if grown is not None:
@@ -269,24 +334,43 @@ class BlendedLoop:
         return expansion
 
     def _apply(
-        self, node: Node, literal: GroundLiteral, achievers: list[GroundAction]
+        self, node: Node, literal: GroundLiteral, achievers: list[GroundAction],
+        spare: list[GroundAction] | None = None,
     ) -> Expansion:
-        """ExpandTree (Algorithm 2), then IncreasePriority while in conflict (lines 11-12)."""
+        """ExpandTree (Algorithm 2), then IncreasePriority while in conflict (lines 11-12).
+
+        With `backtrack`, when no place is free of conflicts, the subtree is taken out
+        again and the next-ranked achievers are tried instead (up to BACKTRACKS more
+        batches): another way of achieving the condition may fit where this one cannot.
+        """
         if len(self.expansions) >= self.options.max_expansions:
             raise BudgetExceededError(
                 f"the expansion budget ({self.options.max_expansions}) ran out "
-                f"while {literal} still fails"
+                f"while {literal} still fails; expanded most often: {self.most_expanded()}"
             )
-        for action in achievers:
-            self.grounding[action.key] = action
-        subtree = expand_tree(self.tree, node, achievers, self.task)
-        if self.options.protect_goals:
-            self._protect(subtree)
-        resolution = resolve_conflicts(
-            self.tree, subtree, self._judge(), self.options.reorder_goals,
-            self.options.refine_more,
-        )
-        return self._record(literal, achievers, len(resolution.conflicts), resolution.moves)
+        width = self.options.max_alternatives
+        batches = [achievers]
+        if self.options.backtrack and spare:
+            batches += [spare[i:i + width] for i in range(0, len(spare), width)][:BACKTRACKS]
+        first: UnresolvableConflictError | None = None
+        for batch in batches:
+            for action in batch:
+                self.grounding[action.key] = action
+            subtree = expand_tree(self.tree, node, batch, self.task)
+            if self.options.protect_goals:
+                self._protect(subtree)
+            try:
+                resolution = resolve_conflicts(
+                    self.tree, subtree, self._judge(), self.options.reorder_goals,
+                    self.options.refine_more,
+                )
+            except UnresolvableConflictError as error:
+                first = first or error
+                _unexpand(self.tree, subtree, node)
+                continue
+            return self._record(literal, batch, len(resolution.conflicts), resolution.moves)
+        assert first is not None
+        raise first
 
     def _protect(self, subtree: Fallback) -> None:
         """Check, before each new achiever, what keeps the other goals reachable."""

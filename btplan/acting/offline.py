@@ -24,7 +24,7 @@ from btplan.acting.online import run as run  # noqa: PLC0414
 from btplan.bt import BehaviorTree, LeafKey
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
-from btplan.planner import PlannerOptions
+from btplan.planner import AchieverIndex, PlannerOptions
 from btplan.worlds.symbolic import SymbolicWorld
 
 DEFAULT_MAX_TICKS = 100_000
@@ -48,6 +48,8 @@ class PlanStats:
     rounds: int
     seconds: float
     premature_successes: int = 0
+    cost: float = 0.0
+    """The executed plan's cost: the sum of its actions' costs (its length in unit cost)."""
 
 
 @dataclass
@@ -85,10 +87,11 @@ def plan(
     strategies = [opts] if options is not None else fallback_strategies(opts)
     first_error: PlanningError | None = None
     found: PlanResult | None = None
+    models = AchieverIndex(task)  # the relaxed model and mutexes, built once for all
     for strategy in strategies:
         try:
             result = _attempt(task, seed, strategy, max_ticks, deadline, timeout, on_expansion,
-                              started, stop)
+                              started, models, stop)
         except BudgetExceededError:
             if found is not None:
                 return found
@@ -102,6 +105,9 @@ def plan(
     if found is not None:
         return found
     assert first_error is not None
+    if len(strategies) > 1:
+        first_error.reason += f" (and {len(strategies) - 1} fallback strategies failed too)"
+        first_error.args = (first_error.reason,)
     raise first_error
 
 
@@ -132,12 +138,13 @@ def _attempt(
     timeout: float | None,
     on_expansion: Callable[[BehaviorTree, Expansion], None] | None,
     started: float,
+    models: AchieverIndex,
     stop: Callable[[], bool] | None = None,
 ) -> PlanResult:
     """Rounds of Algorithm 1 from the initial state until one needs no expansion."""
     groundings: dict[LeafKey, GroundAction] = {}
     world = SymbolicWorld(task, seed=seed, groundings=groundings)
-    loop = BlendedLoop(task, world, opts)
+    loop = BlendedLoop(task, world, opts, like=models)
     ticks_left = max_ticks
 
     def watch(report: TickReport) -> None:
@@ -146,7 +153,10 @@ def _attempt(
             raise Interrupted(f"{len(loop.expansions)} expansions and {loop.ticks} ticks "
                               f"(tree of {len(loop.tree.nodes())} nodes)")
         if deadline is not None and time.perf_counter() > deadline:
-            raise BudgetExceededError(f"the time budget ({timeout:g} s) ran out")
+            raise BudgetExceededError(
+                f"time limit of {timeout:g} s reached after {len(loop.expansions)} expansions "
+                f"(tree of {len(loop.tree.nodes())} nodes); expanded most often: "
+                f"{loop.most_expanded() or 'nothing'}")
         if on_expansion is not None:
             for expansion in report.expansions:
                 on_expansion(loop.tree, expansion)
@@ -200,4 +210,5 @@ def _stats(
         rounds=rounds,
         seconds=seconds,
         premature_successes=premature,
+        cost=sum(a.cost for a in world.executed),
     )

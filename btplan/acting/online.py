@@ -30,6 +30,15 @@ reached, and the tick's record: the live view is one."""
 
 _LOGS = ("started", "halted", "executed", "failed")
 
+ACTING_OPTIONS = PlannerOptions(closest_first=False)
+"""The planner's defaults while acting, less nearest-first expansion.
+
+Breadth-first choice of the condition to expand (the paper's Algorithm 3) grows the
+shallow alternatives of a Fallback before the deep ones, so an agent that undoes an
+action often finds the other way to redo it already in the tree: no new expansion, as
+Problem 1 asks. Nearest-first reaches a long plan in far fewer expansions, which is what
+offline planning (`plan`) needs, but it leaves those alternatives unexpanded."""
+
 
 @dataclass(slots=True)
 class RunOutcome:
@@ -162,7 +171,7 @@ def run_task(
     """
     if world is None:
         world = SymbolicWorld(task, seed=seed, failure_probability=failure_probability)
-    loop = BlendedLoop(task, world, options)
+    loop = BlendedLoop(task, world, options or ACTING_OPTIONS)
     observer = _Observer(world, agents, loop.tree, view, rate, stop)
     interrupted = False
     halted_on_stop: tuple[str, ...] = ()

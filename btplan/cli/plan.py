@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+import time
 from dataclasses import replace
 from enum import Enum
 from pathlib import Path
@@ -13,7 +14,7 @@ from rich.markup import escape
 
 from btplan.acting.loop import Expansion
 from btplan.acting.offline import PlanResult, load, plan
-from btplan.bt import BehaviorTree
+from btplan.bt import FAILURE, BehaviorTree, Condition
 from btplan.bt.formats import dump
 from btplan.cli.app import app, guarded, stderr
 from btplan.cli.interrupts import Interrupts
@@ -21,6 +22,10 @@ from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Interrupted
 from btplan.planner import PlannerOptions
 from btplan.shipped import resolve
+
+
+DEFAULT_TIMEOUT = 300.0
+"""Seconds `btplan plan` plans before it gives up, unless told otherwise."""
 
 
 class Format(str, Enum):
@@ -77,11 +82,11 @@ def plan_command(
     paper: Annotated[bool, typer.Option(
         "--paper", help="Algorithms 1-3 exactly as published, without btplan's extensions.")
     ] = False,
-    timeout: Annotated[float | None, typer.Option(
-        "--timeout", metavar="SECONDS", help="Give up after SECONDS seconds (exit 1).",
-        show_default=False)] = None,
-    quiet: Annotated[bool, typer.Option("-q", "--quiet", help="No summary on standard error.")
-                     ] = False,
+    timeout: Annotated[float, typer.Option(
+        "--timeout", metavar="SECONDS",
+        help="Give up after SECONDS seconds (exit 1); 0: no limit.")] = DEFAULT_TIMEOUT,
+    quiet: Annotated[bool, typer.Option(
+        "-q", "--quiet", help="No progress and no summary on standard error.")] = False,
 ) -> None:
     """Build a reactive BT for the problem by planning and acting in the symbolic world.
 
@@ -95,16 +100,19 @@ def plan_command(
     for name, value in limits:
         if value < 1:
             raise InputError(f"{name} must be at least 1, got {value}")
-    if timeout is not None and timeout <= 0:
-        raise InputError(f"--timeout must be positive, got {timeout:g}")
+    if timeout < 0:
+        raise InputError(f"--timeout must be 0 (no limit) or positive, got {timeout:g}")
     check_outputs(Output("-o/--output", out), Output("--plan-out", plan_out),
                   Output("--trace-expansions", trace_expansions, folder=True))
     chosen = fmt.value if fmt is not None else default_format(out)
     snapshots: list[tuple[str, str]] = []
 
+    progress = Progress(enabled=not quiet)
+
     def trace(tree: BehaviorTree, expansion: Expansion) -> None:
         if trace_expansions is not None:
             snapshots.append((dump(tree, "dot"), dump(tree, "json")))
+        progress.update(tree)
 
     options = PlannerOptions.paper() if paper else None
     if max_alternatives is not None:
@@ -113,12 +121,14 @@ def plan_command(
         try:
             task = load(resolve(domain), *([problem] if problem is not None else []))
             result = plan(task, seed=seed, max_expansions=max_expansions, max_ticks=max_ticks,
-                          timeout=timeout, options=options, on_expansion=trace,
+                          timeout=timeout or None, options=options, on_expansion=trace,
                           stop=interrupted)
         except Interrupted as error:
             stderr.print(f"[bold yellow]interrupted[/]: {escape(error.progress)}; "
                          "nothing written")
             raise typer.Exit(interrupted.exit_code) from None
+        finally:
+            progress.close()
     if trace_expansions is not None:
         folder = Path(trace_expansions)
         folder.mkdir(parents=True, exist_ok=True)
@@ -131,9 +141,44 @@ def plan_command(
     text = dump(result.tree, chosen)
     write_atomic(out, text if text.endswith("\n") else text + "\n")
     if plan_out is not None:
-        write_atomic(plan_out, "".join(a.ipc() + "\n" for a in result.executed))
+        write_atomic(plan_out, plan_text(result, task.domain.has_costs))
     if not quiet:
         stderr.print(summary(result))
+
+
+class Progress:
+    """One stderr line a second once planning has run for a second: expansions, tree
+    size, conditions open. On a terminal the line is rewritten in place."""
+
+    def __init__(self, enabled: bool = True) -> None:
+        self.enabled = enabled
+        self.started = time.perf_counter()
+        self.shown = self.started
+        self.expansions = 0
+        self.terminal = sys.stderr.isatty()
+        self.dirty = False
+
+    def update(self, tree: BehaviorTree) -> None:
+        self.expansions += 1
+        now = time.perf_counter()
+        if not self.enabled or now - self.shown < 1.0:
+            return
+        self.shown = now
+        nodes = tree.nodes()
+        open_ = sum(1 for n in nodes if n.status is FAILURE and isinstance(n, Condition))
+        line = (f"planning: {self.expansions} expansions, tree of {len(nodes)} nodes, "
+                f"{open_} conditions failing, {now - self.started:.0f} s")
+        if self.terminal:
+            sys.stderr.write("\r\x1b[2K" + line)
+            self.dirty = True
+        else:
+            sys.stderr.write(line + "\n")
+        sys.stderr.flush()
+
+    def close(self) -> None:
+        if self.dirty:
+            sys.stderr.write("\r\x1b[2K")
+            sys.stderr.flush()
 
 
 def default_format(out: str) -> str:
@@ -144,10 +189,17 @@ def default_format(out: str) -> str:
     return {"xml": "xml", "dot": "dot", "gv": "dot", "txt": "ascii"}.get(suffix, "json")
 
 
+def plan_text(result: PlanResult, general: bool) -> str:
+    """The executed actions in IPC plan format, ending with the cost line IPC tools write."""
+    kind = "general cost" if general else "unit cost"
+    steps = "".join(a.ipc() + "\n" for a in result.executed)
+    return steps + f"; cost = {result.stats.cost:g} ({kind})\n"
+
+
 def summary(result: PlanResult) -> str:
     s = result.stats
     return (
         f"[green]planned[/]: {s.expansions} expansions, {s.conflicts_resolved} conflicts "
         f"resolved ({s.moves} moves), tree of {s.tree_size} nodes, {s.actions_executed} actions "
-        f"executed, {s.seconds:.3f} s"
+        f"executed (cost {s.cost:g}), {s.seconds:.3f} s"
     )

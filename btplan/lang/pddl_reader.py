@@ -1,20 +1,26 @@
-"""Read PDDL (STRIPS with typing, negative preconditions and equality) into located syntax.
+"""Read PDDL (STRIPS with typing, negative preconditions, equality and action costs).
 
 btplan/lang/sexpr.py finds the lists and tokens; the meaning is given here, so that any
 construct or requirement outside the supported fragment is refused by name, at its
-place, instead of being misread.
+place, instead of being misread. Competition files are read as the competitions meant
+them: an effect that deletes and adds the same atom leaves it true (deletes apply
+first), `(either a b)` in a predicate's parameters types them by the nearest common
+ancestor (a predicate's types only check facts), and `(increase (total-cost) N)` gives
+the action's cost; with `:action-costs`, an action without it costs nothing.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 
+from btplan.lang.pddl_types import implicit_types, merged, typed, typed_list
 from btplan.lang.sexpr import Group, Item, Word, expect_group, expect_word, place, read_items
 from btplan.lang.syntax import (
     ActionSyntax,
     DomainSyntax,
     LiteralSyntax,
     Name,
+    Number,
     ParameterSyntax,
     PredicateSyntax,
     ProblemSyntax,
@@ -23,7 +29,8 @@ from btplan.lang.syntax import (
 from btplan.limits import shorten
 from btplan.model import EQUALITY, ROOT_TYPE
 
-SUPPORTED = (":strips", ":typing", ":negative-preconditions", ":equality")
+SUPPORTED = (":strips", ":typing", ":negative-preconditions", ":equality", ":action-costs")
+TOTAL_COST = "total-cost"
 
 NEEDS = {
     "or": ":disjunctive-preconditions",
@@ -88,40 +95,6 @@ def _requirements(group: Group) -> tuple[Name, ...]:
     return tuple(names)
 
 
-def _typed_list(items: tuple[Item, ...], kind: str) -> list[tuple[Word, Word | None]]:
-    """`a b - t c` -> [(a, t), (b, t), (c, None)]; `kind` is NAME or VARIABLE."""
-    out: list[tuple[Word, Word | None]] = []
-    pending: list[Word] = []
-    index = 0
-    while index < len(items):
-        item = items[index]
-        if isinstance(item, Word) and item.text == "-":
-            type_item = items[index + 1] if index + 1 < len(items) else None
-            if isinstance(type_item, Group) and type_item.head() == "either":
-                raise type_item.at.error("'either' types are not supported", FRAGMENT)
-            if not isinstance(type_item, Word) or type_item.kind != "NAME":
-                raise (type_item or item).at.error("expected a type name after '-'")
-            if not pending:
-                raise item.at.error("a type after '-' must follow the names it types")
-            out.extend((w, type_item) for w in pending)
-            pending = []
-            index += 2
-            continue
-        if not isinstance(item, Word) or item.kind != kind:
-            expected = "a variable such as ?x" if kind == "VARIABLE" else "a name"
-            raise item.at.error(f"expected {expected}")
-        pending.append(item)
-        index += 1
-    out.extend((w, None) for w in pending)
-    return out
-
-
-def _typed(items: tuple[Item, ...]) -> tuple[TypedSyntax, ...]:
-    return tuple(
-        TypedSyntax(_name(w), _name(t) if t else None) for w, t in _typed_list(items, "NAME")
-    )
-
-
 # --- domain ----------------------------------------------------------------------------
 
 
@@ -135,52 +108,68 @@ def _domain(define: Group) -> DomainSyntax:
     types: list[TypedSyntax] = []
     constants: list[TypedSyntax] = []
     predicates: list[PredicateSyntax] = []
+    functions: list[PredicateSyntax] = []
     action_groups: list[Group] = []
     for key, group in _sections(define):
         if key == ":requirements":
             requirements.extend(_requirements(group))
         elif key == ":types":
-            types.extend(_typed(group.items[1:]))
+            types.extend(typed(group.items[1:]))
         elif key == ":constants":
-            constants.extend(_typed(group.items[1:]))
+            constants.extend(typed(group.items[1:]))
         elif key == ":predicates":
-            predicates.extend(_predicate(g, group) for g in group.items[1:])
+            parents = {t.name.text: t.type.text if t.type else ROOT_TYPE for t in types}
+            predicates.extend(_predicate(g, group, parents) for g in group.items[1:])
+        elif key == ":functions":
+            functions.extend(_functions(group))
         elif key == ":action":
             action_groups.append(group)
         else:
             raise group.items[0].at.error(f"section '{shorten(key)}' is not supported", FRAGMENT)
     constant_names = {c.name.text for c in constants}
+    free = ":action-costs" in {r.text for r in requirements}
     return DomainSyntax(
         _name(name),
         requirements=tuple(requirements),
-        types=(*types, *_implicit_types(types)),
+        types=(*merged(types), *implicit_types(types)),
         constants=tuple(constants),
         predicates=tuple(predicates),
-        actions=tuple(_action(g, constant_names) for g in action_groups),
+        actions=tuple(_action(g, constant_names, free) for g in action_groups),
+        functions=tuple(f for f in functions if f.name.text != TOTAL_COST),
     )
 
 
-def _implicit_types(declared: list[TypedSyntax]) -> list[TypedSyntax]:
-    """Parents named only after '-' (`truck car - vehicle`): PDDL declares them too."""
-    names = {t.name.text for t in declared} | {ROOT_TYPE}
-    implicit: dict[str, TypedSyntax] = {}
-    for entry in declared:
-        if entry.type is not None and entry.type.text not in names:
-            implicit.setdefault(entry.type.text, TypedSyntax(entry.type, None))
-    return list(implicit.values())
+def _functions(section: Group) -> list[PredicateSyntax]:
+    """`(:functions (total-cost) - number (road-length ?a ?b - place) - number)`."""
+    found: list[PredicateSyntax] = []
+    items = section.items[1:]
+    index = 0
+    while index < len(items):
+        item = items[index]
+        if isinstance(item, Word) and item.text == "-":
+            kind = items[index + 1] if index + 1 < len(items) else None
+            if not isinstance(kind, Word) or kind.text != "number":
+                raise place(kind, section).error("a function's type must be 'number'")
+            index += 2
+            continue
+        found.append(_predicate(item, section, None))
+        index += 1
+    return found
 
 
-def _predicate(item: Item, section: Group) -> PredicateSyntax:
+def _predicate(
+    item: Item, section: Group, parents: Mapping[str, str | None] | None
+) -> PredicateSyntax:
     group = expect_group(item, "a predicate such as '(on ?x ?y)'", section)
     head = expect_word(group.items[0] if group.items else None, group, None, "a predicate name")
     params = tuple(
         ParameterSyntax(Name(w.text[1:], w.at), _name(t) if t else None)
-        for w, t in _typed_list(group.items[1:], "VARIABLE")
+        for w, t in typed_list(group.items[1:], "VARIABLE", parents)
     )
     return PredicateSyntax(_name(head), params)
 
 
-def _action(group: Group, constants: set[str]) -> ActionSyntax:
+def _action(group: Group, constants: set[str], free: bool) -> ActionSyntax:
     name = expect_word(
         group.items[1] if len(group.items) > 1 else None, group, None, "the action's name"
     )
@@ -197,7 +186,7 @@ def _action(group: Group, constants: set[str]) -> ActionSyntax:
         fields[key.text] = items[index + 1]
     params_group = fields.get(":parameters")
     variables = (
-        _typed_list(expect_group(params_group, "a parameter list", group).items, "VARIABLE")
+        typed_list(expect_group(params_group, "a parameter list", group).items, "VARIABLE")
         if params_group is not None
         else []
     )
@@ -208,12 +197,47 @@ def _action(group: Group, constants: set[str]) -> ActionSyntax:
     )
     pre = fields.get(":precondition")
     post = fields.get(":effect")
+    increases: list[Group] = []
+    effects = _literals(post, group, increases) if post is not None else ()
+    cost, term = _cost(increases, group, free)
     return ActionSyntax(
         _name(name),
         params,
         pre=_renamed(_literals(pre, group), renames) if pre is not None else (),
-        post=_renamed(_literals(post, group), renames) if post is not None else (),
+        post=_renamed(_delete_then_add(effects), renames),
+        cost=cost,
+        cost_term=_renamed((term,), renames)[0] if term is not None else None,
     )
+
+
+def _delete_then_add(effects: tuple[LiteralSyntax, ...]) -> tuple[LiteralSyntax, ...]:
+    """Drop the deletes of atoms the same effect adds: PDDL applies deletes first."""
+    added = {(e.predicate.text, tuple(a.text for a in e.args)) for e in effects if e.positive}
+    return tuple(
+        e for e in effects
+        if e.positive or (e.predicate.text, tuple(a.text for a in e.args)) not in added
+    )
+
+
+def _cost(
+    increases: list[Group], action: Group, free: bool
+) -> tuple[Number | None, LiteralSyntax | None]:
+    """The action's cost from `(increase (total-cost) N)` or `(increase (total-cost) (f ?x))`."""
+    if len(increases) > 1:
+        raise increases[1].at.error("an action may increase total-cost once", FRAGMENT)
+    if not increases:
+        return (Number("0", action.at) if free else None), None
+    increase = increases[0]
+    target = increase.items[1] if len(increase.items) == 3 else None
+    if not isinstance(target, Group) or target.head() != TOTAL_COST or len(target.items) != 1:
+        raise increase.at.error(
+            "only '(increase (total-cost) ...)' is supported: numeric fluents are not", FRAGMENT)
+    amount = increase.items[2]
+    if isinstance(amount, Word):
+        if amount.kind != "NUMBER" or amount.text.startswith("-"):
+            raise amount.at.error("an action's cost is a number, at least 0")
+        return Number(amount.text, amount.at), None
+    return None, _atom(amount)
 
 
 def _parameter_names(variables: list[str], constants: set[str]) -> dict[str, str]:
@@ -241,8 +265,13 @@ def _renamed(
     )
 
 
-def _literals(item: Item, parent: Group) -> tuple[LiteralSyntax, ...]:
-    """Flatten a conjunction into literals; iterative, so deep nesting cannot overflow."""
+def _literals(
+    item: Item, parent: Group, increases: list[Group] | None = None
+) -> tuple[LiteralSyntax, ...]:
+    """Flatten a conjunction into literals; iterative, so deep nesting cannot overflow.
+
+    In an effect (`increases` given), `(increase ...)` terms are set aside there.
+    """
     out: list[LiteralSyntax] = []
     stack: list[Item] = [item]
     while stack:
@@ -252,6 +281,8 @@ def _literals(item: Item, parent: Group) -> tuple[LiteralSyntax, ...]:
             continue
         if head == "and":
             stack.extend(reversed(current.items[1:]))
+        elif head == "increase" and increases is not None:
+            increases.append(current)
         elif head == "not":
             if len(current.items) != 2:
                 raise current.at.error("'not' takes exactly one condition")
@@ -271,6 +302,8 @@ def _atom(group: Group) -> LiteralSyntax:
         needs = NEEDS.get(head.text)
         reason = f"it needs the requirement {needs}" if needs else "it is nested too deeply"
         raise head.at.error(f"'{shorten(head.text)}' is not supported here: {reason}", FRAGMENT)
+    if head.kind == "SYMBOL" and head.text in ("<", ">", "<=", ">="):
+        raise head.at.error(f"numeric comparisons ('{head.text}') are not supported", FRAGMENT)
     if head.kind not in ("NAME", "SYMBOL") or (head.kind == "SYMBOL" and head.text != EQUALITY):
         raise head.at.error(f"expected a predicate name, not '{shorten(head.text)}'")
     args = []
@@ -297,6 +330,7 @@ def _problem(define: Group) -> ProblemSyntax:
     domain: Word | None = None
     objects: list[TypedSyntax] = []
     init: list[LiteralSyntax] = []
+    values: list[tuple[LiteralSyntax, Number]] = []
     goal: tuple[LiteralSyntax, ...] = ()
     for key, group in _sections(define):
         if key == ":domain":
@@ -306,10 +340,17 @@ def _problem(define: Group) -> ProblemSyntax:
         elif key == ":requirements":
             _requirements(group)
         elif key == ":objects":
-            objects.extend(_typed(group.items[1:]))
+            objects.extend(typed(group.items[1:]))
         elif key == ":init":
             for fact in group.items[1:]:
-                init.extend(_literals(fact, group))
+                if isinstance(fact, Group) and fact.head() == EQUALITY and _is_value(fact):
+                    value = _value(fact)
+                    if value is not None:
+                        values.append(value)
+                else:
+                    init.extend(_literals(fact, group))
+        elif key == ":metric":
+            _metric(group)
         elif key == ":goal":
             if len(group.items) != 2:
                 raise group.at.error("':goal' takes one condition", "join several with (and ...)")
@@ -318,4 +359,30 @@ def _problem(define: Group) -> ProblemSyntax:
             raise group.items[0].at.error(f"section '{shorten(key)}' is not supported", FRAGMENT)
     if domain is None:
         raise define.at.error("the problem does not say its domain", "add '(:domain NAME)'")
-    return ProblemSyntax(_name(name), _name(domain), tuple(objects), tuple(init), goal)
+    return ProblemSyntax(
+        _name(name), _name(domain), tuple(objects), tuple(init), goal, tuple(values))
+
+
+def _is_value(fact: Group) -> bool:
+    return len(fact.items) == 3 and isinstance(fact.items[1], Group)
+
+
+def _value(fact: Group) -> tuple[LiteralSyntax, Number] | None:
+    """`(= (road-length a b) 12)`; the start value of total-cost is not kept."""
+    term, number = fact.items[1], fact.items[2]
+    assert isinstance(term, Group)
+    if not isinstance(number, Word) or number.kind != "NUMBER":
+        raise place(number, fact).error("expected a number")
+    if term.head() == TOTAL_COST:
+        return None
+    return _atom(term), Number(number.text, number.at)
+
+
+def _metric(group: Group) -> None:
+    """Only `(:metric minimize (total-cost))`: the sum of action costs."""
+    items = group.items[1:]
+    term = items[1] if len(items) == 2 else None
+    if (not items or not isinstance(items[0], Word) or items[0].text != "minimize"
+            or not isinstance(term, Group) or term.head() != TOTAL_COST or len(term.items) != 1):
+        raise group.at.error(
+            "only '(:metric minimize (total-cost))' is supported", FRAGMENT)

@@ -89,6 +89,8 @@ class ActionSyntax:
     post: tuple[LiteralSyntax, ...] = ()
     cost: Number | None = None
     duration: Number | None = None
+    cost_term: LiteralSyntax | None = None
+    """A cost read from a static function, PDDL's `(increase (total-cost) (f ?x))`."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -99,6 +101,8 @@ class DomainSyntax:
     constants: tuple[TypedSyntax, ...] = ()
     predicates: tuple[PredicateSyntax, ...] = ()
     actions: tuple[ActionSyntax, ...] = ()
+    functions: tuple[PredicateSyntax, ...] = ()
+    """Static numeric functions that action costs read (PDDL's `:action-costs`)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -108,6 +112,8 @@ class ProblemSyntax:
     objects: tuple[TypedSyntax, ...] = ()
     init: tuple[LiteralSyntax, ...] = ()
     goal: tuple[LiteralSyntax, ...] = ()
+    values: tuple[tuple[LiteralSyntax, Number], ...] = ()
+    """Initial values of static functions: `(= (road-length a b) 12)`."""
 
 
 class Source:

@@ -17,6 +17,7 @@ from btplan.lang.syntax import (
     LiteralSyntax,
     Name,
     Number,
+    PredicateSyntax,
     ProblemSyntax,
     TypedSyntax,
 )
@@ -28,6 +29,7 @@ from btplan.model import (
     WILDCARD,
     ActionTemplate,
     Domain,
+    FunctionValue,
     Literal,
     Parameter,
     Predicate,
@@ -56,9 +58,10 @@ def build_domain(syntax: DomainSyntax, report: Report | None = None) -> Domain:
     constants = _typed_names(syntax.constants, types, "constant", report)
     constant_types = {c.name: c.type for c in constants}
     predicates = _predicates(syntax, types, report)
+    functions = _predicates(syntax, types, report, syntax.functions)
     check_unique((a.name for a in syntax.actions), "action", report)
     built = (
-        report.attempt(_action, a, types, predicates, constant_types, report)
+        report.attempt(_action, a, types, predicates, constant_types, report, functions)
         for a in syntax.actions
     )
     actions = tuple(a for a in built if a is not None)
@@ -71,6 +74,7 @@ def build_domain(syntax: DomainSyntax, report: Report | None = None) -> Domain:
         constants=constants,
         predicates=tuple(predicates.values()),
         actions=actions,
+        functions=tuple(functions.values()),
     )
 
 
@@ -87,10 +91,17 @@ def _resolve(types: TypeTable, name: Name | None, report: Report) -> str:
     return report.attempt(types.resolve, name) or ROOT_TYPE
 
 
-def _predicates(syntax: DomainSyntax, types: TypeTable, report: Report) -> dict[str, Predicate]:
-    check_unique((p.name for p in syntax.predicates), "predicate", report)
+def _predicates(
+    syntax: DomainSyntax,
+    types: TypeTable,
+    report: Report,
+    declared: tuple[PredicateSyntax, ...] | None = None,
+) -> dict[str, Predicate]:
+    """The predicates (or, given `declared`, the functions) of a domain, checked."""
+    declared = syntax.predicates if declared is None else declared
+    check_unique((p.name for p in declared), "predicate", report)
     table: dict[str, Predicate] = {}
-    for decl in syntax.predicates:
+    for decl in declared:
         check_unique((p.name for p in decl.parameters), "parameter", report)
         for p in decl.parameters:
             if p.refined:
@@ -109,6 +120,7 @@ def _action(
     predicates: Mapping[str, Predicate],
     constants: Mapping[str, str],
     report: Report,
+    functions: Mapping[str, Predicate] | None = None,
 ) -> ActionTemplate:
     check_unique((p.name for p in syntax.parameters), "parameter", report)
     params = []
@@ -131,6 +143,10 @@ def _action(
         # equalities are static: they restrict bindings, they are not run-time conditions
         (where if checked.predicate == EQUALITY else pre).append(checked)
     post = _checked(context, syntax.post, "post", report)
+    cost_term = None
+    if syntax.cost_term is not None:
+        terms = _LiteralChecker(types, functions or {}, scope, syntax.name.text, set(constants))
+        cost_term = report.attempt(terms.check, syntax.cost_term, "cost")
     report.attempt(
         _check_contradictions,
         syntax.post,
@@ -147,6 +163,7 @@ def _action(
         preconditions=tuple(pre),
         effects=tuple(post),
         cost=_cost(syntax.cost),
+        cost_term=cost_term,
         duration=report.attempt(_duration, syntax.duration) or 1,
     )
 
@@ -331,6 +348,13 @@ def build_problem(syntax: ProblemSyntax, domain: Domain, report: Report | None =
         else:
             init.append(report.attempt(facts.check, lit, "initial fact"))
     goal = [report.attempt(facts.check, lit, "goal") for lit in syntax.goal]
+    terms = _FactChecker(types, {f.name: f for f in domain.functions}, known, unknown)
+    values = []
+    for term, number in syntax.values:
+        checked = report.attempt(terms.check, term, "function value")
+        if checked is not None:
+            values.append(FunctionValue(
+                function=checked.predicate, args=checked.args, value=float(number.text)))
     report.attempt(_check_contradictions, syntax.goal, "goal conditions", "no state satisfies both")
     _warn_unreachable(syntax.goal, init, domain, report)
     if own:
@@ -341,6 +365,7 @@ def build_problem(syntax: ProblemSyntax, domain: Domain, report: Report | None =
         objects=objects,
         init=tuple(dict.fromkeys(x for x in init if x is not None)),
         goal=tuple(x for x in goal if x is not None),
+        values=tuple(values),
     )
 
 

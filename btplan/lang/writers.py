@@ -88,6 +88,10 @@ def _bt_action(action: ActionTemplate) -> list[str]:
             lines.append(
                 f"{INDENT * 2}{label + ':':6} {', '.join(bt_literal(x) for x in literals)}"
             )
+    if action.cost_term is not None:
+        raise InputError(
+            f"cannot be written in .bt: the cost of {action.name} is read from "
+            f"'{action.cost_term.predicate}'", hint="keep the domain in PDDL")
     if action.cost != 1.0:
         lines.append(f"{INDENT * 2}cost: {action.cost:g}")
     if action.duration != 1:
@@ -176,7 +180,7 @@ def pddl_domain(domain: Domain) -> str:
 def _pddl_action(action: ActionTemplate) -> list[str]:
     if any(p.refined for p in action.parameters):
         raise _unwritable(f"the refined parameters of {action.name}")
-    if action.cost != 1.0 or action.duration != 1:
+    if action.cost != 1.0 or action.cost_term is not None or action.duration != 1:
         raise _unwritable(f"the cost or duration of {action.name}")
     names = frozenset(p.name for p in action.parameters)
     params = _pddl_typed((f"?{p.name}", p.type) for p in action.parameters)

@@ -26,33 +26,48 @@ from btplan.planner.options import PlannerOptions
 from btplan.planner.protocol import Refiner
 
 
+class _Shared:
+    """What does not depend on the options: built once per task and shared."""
+
+    def __init__(self) -> None:
+        self.objects: Objects | None = None
+        self.made: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
+        self.relaxed: RelaxedModel | None = None
+        self.mutexes: Mutexes | None = None
+
+
 class AchieverIndex:
     """Effects of the domain indexed by (predicate, sign), with a lazily built h_add model."""
 
-    def __init__(self, task: Task, options: PlannerOptions | None = None) -> None:
+    def __init__(
+        self, task: Task, options: PlannerOptions | None = None, like: AchieverIndex | None = None
+    ) -> None:
+        """`like`: an index of the same task whose groundings, relaxed model and mutexes
+        are shared (built once, however many planning attempts use them)."""
         self.task = task
         self.options = options or PlannerOptions()
+        self._shared: _Shared = like._shared if like is not None else _Shared()
         self._by_effect: dict[tuple[str, bool], list[tuple[ActionTemplate, Literal]]] = {}
         for template in task.domain.actions:
             for effect in template.effects:
                 key = (effect.predicate, effect.positive)
                 self._by_effect.setdefault(key, []).append((template, effect))
-        self.objects = Objects(task)
-        self._made: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
-        self._relaxed: RelaxedModel | None = None
-        self._mutexes: Mutexes | None = None
+        self.objects = self._shared.objects or Objects(task)
+        self._shared.objects = self.objects
 
     @property
     def relaxed(self) -> RelaxedModel:
-        if self._relaxed is None:
-            self._relaxed = RelaxedModel(self.task, objects=self.objects, ground=self.ground)
-        return self._relaxed
+        shared = self._shared
+        if shared.relaxed is None:
+            shared.relaxed = RelaxedModel(self.task, objects=self.objects, ground=self.ground)
+        return shared.relaxed
 
     def ground(self, template: ActionTemplate, args: tuple[str, ...]) -> GroundAction:
         """`instantiate`, remembered: the same groundings come up on every expansion."""
-        action = self._made.get((template.name, args))
+        made = self._shared.made
+        action = made.get((template.name, args))
         if action is None:
-            action = self._made[(template.name, args)] = instantiate(template, args)
+            action = made[(template.name, args)] = self.task.instantiate(template, args)
         return action
 
     def has_effect(self, condition: GroundLiteral) -> bool:
@@ -62,9 +77,10 @@ class AchieverIndex:
     @property
     def mutexes(self) -> Mutexes:
         """h^2 mutexes from the initial state, built on first use."""
-        if self._mutexes is None:
-            self._mutexes = Mutexes(self.relaxed.actions, self.task.initial_state)
-        return self._mutexes
+        shared = self._shared
+        if shared.mutexes is None:
+            shared.mutexes = Mutexes(self.relaxed.actions, self.task.initial_state)
+        return shared.mutexes
 
     def achievers(
         self,
@@ -80,13 +96,14 @@ class AchieverIndex:
         then the number of preconditions that fail now; then the name, for ties.
         """
         found: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
+        reachable = self.relaxed.costs(state) if self.options.prune_bindings else None
         for template, effect in self._by_effect.get((condition.atom.predicate, condition.positive), []):
             partial = unify(self.task, template, effect, condition.atom, self.objects)
             if partial is None:
                 continue
             for binding in bindings(
                 self.task, template, partial, state, refine, self.options.max_bindings,
-                self.objects,
+                self.objects, reachable=reachable,
             ):
                 args = tuple(binding[p.name] for p in template.parameters)
                 action = self.ground(template, args)

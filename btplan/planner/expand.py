@@ -147,12 +147,23 @@ def non_circular(achievers: Sequence[GroundAction], goals: set[GroundLiteral]) -
     return [a for a in achievers if not any(p in goals for p in a.preconditions)]
 
 
+def is_condition(node: Node) -> bool:
+    """Whether `literal_of(node)` is not None, without building the literal."""
+    kind = type(node)
+    if kind is Condition:
+        return True
+    if kind is Inverter:
+        children = node.children
+        return bool(children) and type(children[0]) is Condition
+    return False
+
+
 def conditions_bfs(root: Node) -> Iterable[Node]:
     """Condition nodes in breadth-first order, left to right (GetConditionsBFS)."""
     queue: deque[Node] = deque([root])
     while queue:
         node = queue.popleft()
-        if literal_of(node) is not None:
+        if is_condition(node):
             yield node
             continue
         queue.extend(node.children)

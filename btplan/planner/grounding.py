@@ -10,7 +10,7 @@ parameter is asked of the refiner (the world backend) instead of enumerated.
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping
+from collections.abc import Container, Iterator, Mapping
 
 from btplan.model import EQUALITY, ActionTemplate, Atom, Literal, Parameter, Task
 from btplan.planner.protocol import Refiner
@@ -69,27 +69,42 @@ def bindings(
     limit: int,
     objects: Objects | None = None,
     optimistic: bool = False,
+    reachable: Container[Atom] | None = None,
 ) -> Iterator[dict[str, str]]:
     """Complete bindings of `template` extending `partial`, depth first, at most `limit`.
 
     Objects come sorted by name and refined values in the refiner's order, so the
     enumeration is deterministic. `optimistic` skips the checks on predicates that
     actions change (`where: blocks(s, t)`): false in one state, they may hold in a later
-    one, so a reachability estimate must not rule those bindings out.
+    one, so a reachability estimate must not rule those bindings out. With `reachable`
+    (the atoms reachable from the state, ignoring deletes), a positive precondition on
+    a changing predicate must be among them: such a binding could never run, and
+    enumerating it would use up `limit` before the bindings that can (a sandwich made
+    of bread already eaten).
     """
     table = objects or Objects(task)
     refined = {p.name for p in template.parameters if p.refined}
     # The world answers for refined values, `where` included: checks on them are its own.
     checks = tuple(c for c in static_checks(task, template) if not refined & set(c.args))
+    changing = task.domain.changed_predicates
     if optimistic:
-        changing = task.domain.changed_predicates
         checks = tuple(c for c in checks if c.predicate not in changing)
-    names = {p.name for p in template.parameters}
     positive = tuple(c for c in checks if c.positive and c.predicate != EQUALITY)
     types = {p.name: p.type for p in template.parameters}
+    hopes: tuple[Literal, ...] = ()
+    if reachable is not None:
+        hopes = tuple(
+            p for p in template.preconditions
+            if p.positive and p.predicate in changing and not refined & set(p.args))
     order = [p for p in template.parameters if p.name not in partial]
     # Enumerate ordinary parameters first: refiners usually need them bound.
     order.sort(key=lambda p: p.refined)
+    # Each check is made once, right after the last of its parameters is bound.
+    position = {p.name: i for i, p in enumerate(order)}
+    staged: list[list[tuple[Literal, Container[Atom]]]] = [[] for _ in range(len(order) + 1)]
+    for literal, facts in [*((c, state) for c in checks), *((h, reachable or ()) for h in hopes)]:
+        due = max((position[a] for a in literal.args if a in position), default=-1)
+        staged[due + 1].append((literal, facts))
     count = 0
 
     def options(binding: Mapping[str, str], parameter: Parameter) -> list[str]:
@@ -106,9 +121,10 @@ def bindings(
             yield dict(binding)
             return
         parameter = order[depth]
+        due = staged[depth + 1]
         for value in options(binding, parameter):
             binding[parameter.name] = value
-            if _consistent(checks, binding, names, parameter.name, state):
+            if all(_holds(lit, binding, facts) for lit, facts in due):
                 yield from extend(binding, depth + 1)
                 if count >= limit:
                     del binding[parameter.name]
@@ -116,7 +132,7 @@ def bindings(
             del binding[parameter.name]
 
     start = dict(partial)
-    if not _consistent(checks, start, names, None, state):
+    if not all(_holds(lit, start, facts) for lit, facts in staged[0]):
         return
     yield from extend(start, 0)
 
@@ -133,7 +149,7 @@ def _supported(
 
     A check such as needs(p, q, r) is decidable only once q and r are both bound; read
     from the state's atoms, it already tells which q can work. This cuts the same values
-    `_consistent` would cut later, in the same order, without the cross product.
+    the staged checks would cut later, in the same order, without the cross product.
     """
     values = table.of(types[name])
     for literal in positive:
@@ -154,29 +170,14 @@ def _supported(
     return list(values)
 
 
-def _consistent(
-    checks: tuple[Literal, ...],
-    binding: Mapping[str, str],
-    names: set[str],
-    just_bound: str | None,
-    state: frozenset[Atom],
-) -> bool:
-    """True when every check that became decidable with `just_bound` holds."""
-    for literal in checks:
-        if just_bound is not None and just_bound not in literal.args:
-            continue
-        if any(a in names and a not in binding for a in literal.args):
-            continue
-        args = tuple(binding.get(a, a) for a in literal.args)
-        if PLACEHOLDER in args:
-            continue
-        if literal.predicate == EQUALITY:
-            value = args[0] == args[1]
-        else:
-            value = Atom(literal.predicate, args) in state
-        if value is not literal.positive:
-            return False
-    return True
+def _holds(literal: Literal, binding: Mapping[str, str], facts: Container[Atom]) -> bool:
+    """Whether a check holds under a binding that covers its parameters."""
+    args = tuple([binding.get(a, a) for a in literal.args])
+    if PLACEHOLDER in args:
+        return True
+    if literal.predicate == EQUALITY:
+        return (args[0] == args[1]) is literal.positive
+    return (Atom(literal.predicate, args) in facts) is literal.positive
 
 
 def unify(

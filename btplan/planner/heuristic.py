@@ -13,11 +13,16 @@ preconditions cannot be reached at all.
 from __future__ import annotations
 
 import heapq
+from collections import deque
 import math
 from collections.abc import Callable, Iterable
 
 from btplan.model import ActionTemplate, Atom, GroundAction, Task, ground_literal, instantiate
 from btplan.planner.grounding import PLACEHOLDER, Objects, bindings
+
+
+COST_CACHE = 8
+"""States whose h_add costs are kept (planning goes back and forth between a few)."""
 
 
 class RelaxedModel:
@@ -37,7 +42,9 @@ class RelaxedModel:
                 task, template, {}, task.initial_state, None, limit, table, optimistic=True
             ):
                 args = tuple(binding[p.name] for p in template.parameters)
-                self.actions.append(_optimistic(template, binding, ground(template, args)))
+                action = ground(template, args)
+                if action.cost < math.inf:  # an undefined cost makes it inapplicable
+                    self.actions.append(_optimistic(template, binding, action))
         self._pre: list[tuple[Atom, ...]] = [
             tuple(p.atom for p in a.preconditions if p.positive) for a in self.actions
         ]
@@ -45,16 +52,18 @@ class RelaxedModel:
         for i, pre in enumerate(self._pre):
             for atom in set(pre):
                 self._by_pre.setdefault(atom, []).append(i)
+        self._waiting = [len(set(pre)) for pre in self._pre]
+        self._free = [i for i, n in enumerate(self._waiting) if n == 0]
         self._producers: dict[Atom, list[GroundAction]] | None = None
-        self._cache_state: frozenset[Atom] | None = None
-        self._cache: dict[Atom, float] = {}
+        self._cache: dict[frozenset[Atom], dict[Atom, float]] = {}
 
     def costs(self, state: frozenset[Atom]) -> dict[Atom, float]:
         """h_add cost of every reachable atom from `state` (generalised Dijkstra)."""
-        if state == self._cache_state:
-            return self._cache
+        cached = self._cache.get(state)
+        if cached is not None:
+            return cached
         cost: dict[Atom, float] = {a: 0.0 for a in state}
-        waiting = [len(set(pre)) for pre in self._pre]
+        waiting = list(self._waiting)
         queue: list[tuple[float, Atom]] = [(0.0, a) for a in sorted(state)]
         heapq.heapify(queue)
         done: set[Atom] = set()
@@ -74,7 +83,9 @@ class RelaxedModel:
                     fired[i] = True
                     total = sum(cost[p] for p in set(self._pre[i]))
                     self._relax(i, total, cost, queue)
-        self._cache_state, self._cache = state, cost
+        if len(self._cache) >= COST_CACHE:
+            del self._cache[next(iter(self._cache))]
+        self._cache[state] = cost
         return cost
 
     def _relax(
@@ -85,6 +96,37 @@ class RelaxedModel:
             if value < cost.get(atom, math.inf):
                 cost[atom] = value
                 heapq.heappush(queue, (value, atom))
+
+    def reachable(self, state: frozenset[Atom], targets: Iterable[Atom]) -> bool:
+        """Whether every target can be reached from `state` ignoring deletes.
+
+        Plain relaxed reachability, stopping as soon as the last target is reached:
+        cheaper than `costs` when only yes or no matters.
+        """
+        missing = {t for t in targets if t not in state}
+        if not missing:
+            return True
+        waiting = list(self._waiting)
+        reached = set(state)
+        frontier = deque(state)
+        for i in self._free:
+            for atom in self.actions[i].add:
+                if atom not in reached:
+                    reached.add(atom)
+                    frontier.append(atom)
+        while frontier:
+            atom = frontier.popleft()
+            missing.discard(atom)
+            if not missing:
+                return True
+            for i in self._by_pre.get(atom, ()):
+                waiting[i] -= 1
+                if waiting[i] == 0:
+                    for added in self.actions[i].add:
+                        if added not in reached:
+                            reached.add(added)
+                            frontier.append(added)
+        return False
 
     def producers(self, atom: Atom) -> list[GroundAction]:
         """The grounded actions that add `atom`."""

@@ -58,28 +58,47 @@ class Mutexes:
                 add_bits |= 1 << i
             compiled.append((pre, add, add_bits, deleted & ~add_bits))
         rows = self._rows
+        # Pairs are symmetric: when atom q gains partners, each partner gains q. Setting
+        # those bits one by one in big ints copies a whole row per bit (quadratic in the
+        # number of atoms), so they are set in a byte array per row and merged into the
+        # row the next time it is read.
+        size = (len(atoms) + 7) // 8
+        pending = [bytearray(size) for _ in atoms]
+        dirty = [False] * len(atoms)
+
+        def row(i: int) -> int:
+            if dirty[i]:
+                rows[i] |= int.from_bytes(pending[i], "little")
+                dirty[i] = False
+            return rows[i]
+
         changed = True
         while changed:
             changed = False
             for pre, add, add_bits, deleted in compiled:
                 together = self._reached
                 for i in pre:
-                    together &= rows[i]
+                    together &= row(i)
                 if any(not together >> i & 1 for i in pre):
                     continue  # a precondition, or a pair of them, is not reachable yet
                 keep = together & ~deleted & ~add_bits
                 for q in add:
-                    new = (keep | add_bits) & ~rows[q]
+                    new = (keep | add_bits) & ~row(q)
                     if not new:
                         continue
                     changed = True
                     rows[q] |= new
                     self._reached |= 1 << q
-                    rest = new & ~(1 << q)
-                    while rest:
-                        low = rest & -rest
-                        rows[low.bit_length() - 1] |= 1 << q
-                        rest ^= low
+                    byte, bit = q >> 3, 1 << (q & 7)
+                    bits = bin(new)[:1:-1]  # least significant first
+                    i = bits.find("1")
+                    while i >= 0:
+                        if i != q:
+                            pending[i][byte] |= bit
+                            dirty[i] = True
+                        i = bits.find("1", i + 1)
+        for i in range(len(atoms)):
+            row(i)
 
     def knows(self, atom: Atom) -> bool:
         return atom in self._index

@@ -20,12 +20,18 @@ class PlannerOptions:
     `refine_more` prunes circular and conflicting achievers and lets a failed,
     expanded condition gain achievers that fit a later state. `protect_goals` adds,
     before an achiever that would make a goal unreachable, a condition that keeps it
-    reachable (costly: plan() uses it as its last fallback). `expansions_per_tick` lets
-    the acting loop tick the tree again, within the same tick (the world has not moved),
-    after an expansion, up to that many expansions: Algorithm 1 as published spends a
-    tick of the world per expansion, which a sequential planner, planning before it
-    acts, does not. `PlannerOptions.paper()` turns every departure from the paper off,
-    for comparison.
+    reachable (costly: plan() uses it as its last fallback). `closest_first` expands the
+    failed condition nearest to the state (h_add) instead of the first in breadth-first
+    order; `avoid_dead_ends` drops achievers that would make a condition the enclosing
+    sequences still need unreachable (btplan/planner/lookahead.py). `prune_bindings`
+    skips bindings with a precondition unreachable from the state while enumerating,
+    so `max_bindings` counts only bindings that could run. `backtrack` tries the
+    next-ranked achievers when the chosen ones have no conflict-free place.
+    `expansions_per_tick` lets the acting loop tick the tree again, within the same tick
+    (the world has not moved), after an expansion, up to that many expansions: Algorithm 1
+    as published spends a tick of the world per expansion, which a sequential planner,
+    planning before it acts, does not. `PlannerOptions.paper()` turns every departure
+    from the paper off, for comparison.
     """
 
     max_expansions: int = 1000
@@ -36,11 +42,17 @@ class PlannerOptions:
     mutexes: bool = True
     refine_more: bool = True
     protect_goals: bool = False
+    closest_first: bool = True
+    avoid_dead_ends: bool = True
+    prune_bindings: bool = True
+    backtrack: bool = True
     stall_limit: int = 3
     expansions_per_tick: int = 1
 
     @classmethod
     def paper(cls, **changes: Any) -> PlannerOptions:
         """Algorithms 1-3 as published: first-match order, no extensions."""
-        base = cls(heuristic=False, reorder_goals=False, mutexes=False, refine_more=False)
+        base = cls(heuristic=False, reorder_goals=False, mutexes=False, refine_more=False,
+                   closest_first=False, avoid_dead_ends=False, prune_bindings=False,
+                   backtrack=False)
         return replace(base, **changes)

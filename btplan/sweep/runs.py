@@ -9,7 +9,7 @@ error, never a missing row.
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from btplan import acting
@@ -111,7 +111,8 @@ def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: s
                     "checks": out.checks / max(out.ticks, 1),
                     "disturbances": out.disturbances}
         options = (PlannerOptions.paper(stall_limit=max_ticks) if method == "btplan-paper"
-                   else PlannerOptions(stall_limit=max_ticks, expansions_per_tick=EXPANSIONS))
+                   else replace(acting.ACTING_OPTIONS, stall_limit=max_ticks,
+                                expansions_per_tick=EXPANSIONS))
         outcome = acting.run(task, agents=agents, world=world, seed=seed,
                              max_ticks=max_ticks, options=options)
     finally:

@@ -86,7 +86,7 @@ class SymbolicWorld:
             if template is None:
                 raise WorldError(f"the domain has no action named {name!r}")
             try:
-                action = instantiate(template, tuple(args))
+                action = self.task.instantiate(template, tuple(args))
             except ValueError as error:
                 raise WorldError(str(error)) from None
             self._grounded[key] = action

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
 from typer.testing import CliRunner
 
 from btplan.cli import app
@@ -29,7 +30,8 @@ def test_plan_writes_tree_and_ipc_plan_files(tmp_path: Path) -> None:
     assert result.stdout == ""
     assert 'BTCPP_format="4"' in out.read_text()
     assert plan.read_text().splitlines() == [
-        "(moveto cube tau_cube)", "(pick cube)", "(moveto goal tau_goal)", "(place cube goal)"]
+        "(moveto cube tau_cube)", "(pick cube)", "(moveto goal tau_goal)", "(place cube goal)",
+        "; cost = 4 (unit cost)"]
 
 
 def test_trace_expansions_writes_one_dot_and_json_per_expansion(tmp_path: Path) -> None:
@@ -84,7 +86,8 @@ def test_plan_reads_pddl_domain_and_problem(tmp_path: Path) -> None:
     result = runner.invoke(app, ["plan", str(domain), str(problem), "-f", "ascii",
                                  "--plan-out", str(plan)])
     assert result.exit_code == 0, result.output
-    steps = plan.read_text().splitlines()
+    *steps, cost = plan.read_text().splitlines()
+    assert cost == f"; cost = {len(steps)} (unit cost)"
     assert steps and all(s.startswith("(") and s.endswith(")") for s in steps)
     assert {s.split()[0] for s in steps} <= {"(move", "(pick", "(drop"}
 
@@ -161,3 +164,31 @@ def test_output_format_follows_the_file_extension(tmp_path: Path) -> None:
         result = runner.invoke(app, ["plan", PICK, "-o", str(tmp_path / name)])
         assert result.exit_code == 0, result.output
         assert (tmp_path / name).read_text().lstrip().startswith(start)
+
+
+def test_timeout_zero_means_no_limit_and_a_negative_one_is_refused() -> None:
+    result = runner.invoke(app, ["plan", PICK, "--timeout", "0", "-f", "json"])
+    assert result.exit_code == 0, result.output
+    refused = runner.invoke(app, ["plan", PICK, "--timeout", "-1"])
+    assert refused.exit_code == 2
+    assert "--timeout must be 0 (no limit) or positive" in refused.stderr
+
+
+def test_progress_is_shown_once_a_second_after_the_first(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from btplan.acting.offline import load
+    from btplan.cli import plan as plan_module
+    from btplan.planner import initial_tree
+
+    clock = iter([0.0, 0.5, 1.2, 1.5, 2.4])
+    monkeypatch.setattr(plan_module.time, "perf_counter", lambda: next(clock))
+    progress = plan_module.Progress()
+    tree = initial_tree(load(PICK))
+    for _ in range(4):
+        progress.update(tree)
+    lines = capsys.readouterr().err.splitlines()
+    assert lines == [
+        "planning: 2 expansions, tree of 1 nodes, 0 conditions failing, 1 s",
+        "planning: 4 expansions, tree of 1 nodes, 0 conditions failing, 2 s",
+    ]

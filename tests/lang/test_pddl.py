@@ -59,8 +59,8 @@ def test_the_supported_fragment_reads_into_models(tmp_path: Path) -> None:
     [
         ("(:requirements :strips :adl)", "requirement ':adl' is not supported"),
         ("(:requirements :conditional-effects)", "requirement ':conditional-effects'"),
-        ("(:functions (total-cost))", "section ':functions' is not supported"),
-        ("(:types a - (either b c))", "'either' types are not supported"),
+        ("(:requirements :numeric-fluents)", "requirement ':numeric-fluents' is not supported"),
+        ("(:types a - (either b c))", "'either' types are not supported here"),
     ],
 )
 def test_unsupported_requirements_are_refused_by_name(

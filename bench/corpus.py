@@ -1,0 +1,209 @@
+"""btplan beside peer planners on a folder of competition-layout domains, as whole processes.
+
+Each subfolder of the corpus is a domain: `domain.pddl` beside its instance files, or
+one domain file per instance (`p01-domain.pddl`, `domain_p01.pddl`, `p01.domain.pddl`).
+Every planner runs as its own process on the untouched files, with a per-problem time
+limit, and is measured from process start to exit: start-up and imports count, as
+they do for a user. Peak RSS comes from the kernel (wait4). A plan counts only when
+bench/validate_plan.py, which shares no code with btplan, accepts it.
+
+    python bench/planning.py --corpus DIR [--per-domain 3] [--timeout 30]
+                             [--planners btplan,pyperplan,fd] [--only barman,tpp]
+
+Peers: pyperplan (GBFS with h_FF, the `bench` extra) and Fast Downward's lama-first
+(the `fd` extra, `up-fast-downward`), skipped when not installed.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import signal
+import statistics
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+from validate_plan import validate  # noqa: E402
+
+BTPLAN = "import sys; from btplan.cli import main; sys.argv[0] = 'btplan'; main()"
+"""What the `btplan` console script runs; PYTHONPATH may point it at another checkout."""
+
+PYPERPLAN = """
+import logging, sys
+from pyperplan.planner import HEURISTICS, SEARCHES, search_plan
+logging.disable(logging.CRITICAL)
+plan = search_plan(sys.argv[1], sys.argv[2], SEARCHES["gbf"], HEURISTICS["hff"])
+if plan is None:
+    sys.exit(1)
+with open(sys.argv[3], "w") as out:
+    out.writelines(op.name + "\\n" for op in plan)
+"""
+
+
+@dataclass
+class Run:
+    solved: bool
+    seconds: float
+    rss_mb: float
+    length: int | None = None
+    cost: float | None = None
+    note: str = ""
+
+
+@dataclass
+class Case:
+    domain: str
+    problem: str
+    runs: dict[str, Run]
+
+
+def instances(folder: Path) -> list[tuple[Path, Path]]:
+    """(domain file, problem file) pairs of one domain folder, smallest problem first."""
+    pairs: list[tuple[Path, Path]] = []
+    shared = folder / "domain.pddl"
+    for path in sorted(folder.glob("*.pddl")):
+        if "domain" in path.name:
+            continue
+        stem = path.stem
+        own = [folder / f"{stem}-domain.pddl", folder / f"domain_{stem}.pddl",
+               folder / f"{stem}.domain.pddl", folder / f"domain-{stem}.pddl"]
+        domain = next((d for d in own if d.exists()), shared)
+        if domain.exists():
+            pairs.append((domain, path))
+    return sorted(pairs, key=lambda p: (p[1].stat().st_size, p[1].name))
+
+
+def fd_driver() -> str | None:
+    spec = importlib.util.find_spec("up_fast_downward")
+    if spec is None or not spec.submodule_search_locations:
+        return None
+    driver = Path(list(spec.submodule_search_locations)[0]) / "downward" / "fast-downward.py"
+    return str(driver) if driver.exists() else None
+
+
+def command(planner: str, domain: Path, problem: Path, plan: str, limit: float) -> list[str]:
+    if planner == "btplan":
+        return [sys.executable, "-c", BTPLAN, "plan", str(domain), str(problem),
+                "-o", os.devnull, "--plan-out", plan, "--timeout", f"{limit:g}"]
+    if planner == "pyperplan":
+        return [sys.executable, "-c", PYPERPLAN, str(domain), str(problem), plan]
+    driver = fd_driver()
+    assert driver is not None
+    return [sys.executable, driver, "--alias", "lama-first", "--plan-file", plan,
+            str(domain), str(problem)]
+
+
+def measure(argv: list[str], limit: float, cwd: str) -> tuple[int | None, float, float, str]:
+    """(exit code or None on timeout, wall seconds, peak RSS in MB, last stderr line)."""
+    err_path = os.path.join(cwd, "stderr.txt")
+    start = time.perf_counter()
+    with open(err_path, "wb") as err:
+        pid = os.posix_spawn(argv[0], argv, dict(os.environ), file_actions=[
+            (os.POSIX_SPAWN_OPEN, 0, os.devnull, os.O_RDONLY, 0),
+            (os.POSIX_SPAWN_OPEN, 1, os.devnull, os.O_WRONLY, 0),
+            (os.POSIX_SPAWN_DUP2, err.fileno(), 2)], setsid=True)
+    code: int | None = None
+    while True:
+        done, status, usage = os.wait4(pid, os.WNOHANG)
+        if done:
+            seconds = time.perf_counter() - start
+            code = os.waitstatus_to_exitcode(status)
+            break
+        if time.perf_counter() - start > limit:
+            os.killpg(pid, signal.SIGKILL)
+            _, status, usage = os.wait4(pid, 0)
+            seconds = time.perf_counter() - start
+            break
+        time.sleep(0.002)
+    lines = Path(err_path).read_text(errors="replace").strip().splitlines()
+    said = [x for x in lines if x.startswith(("error:", "failed:", "Error", "ValueError"))]
+    return code, seconds, usage.ru_maxrss / 1024, (said or lines or [""])[-1]
+
+
+def run_one(planner: str, domain: Path, problem: Path, limit: float) -> Run:
+    with tempfile.TemporaryDirectory() as work:
+        plan = os.path.join(work, "plan.txt")
+        argv = command(planner, domain, problem, plan, limit)
+        code, seconds, rss, last = measure(argv, limit + 2, work)
+        if code is None:
+            return Run(False, seconds, rss, note="timeout")
+        if not os.path.exists(plan):
+            return Run(False, seconds, rss, note=last[:70] or f"exit {code}")
+        text = Path(plan).read_text()
+    ok, reason, cost = validate(domain.read_text(), problem.read_text(), text)
+    if not ok:
+        return Run(False, seconds, rss, note="INVALID: " + reason[:60])
+    steps = [s for s in text.splitlines() if s.strip() and not s.startswith(";")]
+    return Run(True, seconds, rss, len(steps), cost)
+
+
+def available(planners: list[str]) -> list[str]:
+    kept = []
+    for planner in planners:
+        if planner == "pyperplan" and importlib.util.find_spec("pyperplan") is None:
+            print("pyperplan is not installed: skipped", file=sys.stderr)
+        elif planner == "fd" and fd_driver() is None:
+            print("up-fast-downward is not installed (extra 'fd'): skipped", file=sys.stderr)
+        else:
+            kept.append(planner)
+    return kept
+
+
+def cell(run: Run) -> str:
+    if run.solved:
+        return f"{run.length:>4} {run.seconds:6.2f}s {run.rss_mb:5.0f}MB"
+    return f"{'-':>4} {run.seconds:6.2f}s {run.note[:40]}"
+
+
+def bench_corpus(corpus: Path, planners: list[str], per_domain: int, limit: float,
+                 only: list[str] | None) -> list[Case]:
+    planners = available(planners)
+    cases: list[Case] = []
+    folders = sorted(p for p in corpus.iterdir() if p.is_dir())
+    for folder in folders:
+        if only and folder.name not in only:
+            continue
+        for domain, problem in instances(folder)[:per_domain]:
+            runs = {p: run_one(p, domain, problem, limit) for p in planners}
+            case = Case(folder.name, problem.name, runs)
+            cases.append(case)
+            print(f"{folder.name:<12} {problem.name:<12} " + " | ".join(
+                f"{p}: {cell(r)}" for p, r in runs.items()), flush=True)
+    return cases
+
+
+def _median(values: list[float]) -> float:
+    return statistics.median(values) if values else float("nan")
+
+
+def report(cases: list[Case], planners: list[str], limit: float) -> list[str]:
+    planners = [p for p in planners if cases and p in cases[0].runs]
+    lines = [f"coverage within {limit:g} s per problem (valid plans):",
+             f"{'domain':<12} " + " ".join(f"{p:>10}" for p in planners)]
+    domains = sorted({c.domain for c in cases})
+    for name in [*domains, "total"]:
+        mine = [c for c in cases if name in ("total", c.domain)]
+        lines.append(f"{name:<12} " + " ".join(
+            f"{sum(c.runs[p].solved for c in mine):>4}/{len(mine):<5}" for p in planners))
+    for peer in planners:
+        if peer == "btplan":
+            continue
+        both = [c for c in cases if c.runs["btplan"].solved and c.runs[peer].solved]
+        time_ratio = _median([c.runs["btplan"].seconds / c.runs[peer].seconds for c in both])
+        length_ratio = _median([(c.runs["btplan"].length or 0) / max(c.runs[peer].length or 1, 1)
+                                for c in both])
+        lines.append(
+            f"btplan / {peer} on the {len(both)} problems both solve: median whole-process "
+            f"time ratio {time_ratio:.2f}, median plan length ratio {length_ratio:.2f}")
+    for planner in planners:
+        runs = [c.runs[planner] for c in cases]
+        solved = [r.seconds for r in runs if r.solved]
+        lines.append(f"{planner}: median time of solved {_median(solved):.2f} s, "
+                     f"peak RSS max {max((r.rss_mb for r in runs), default=0):.0f} MB")
+    return lines
