@@ -112,17 +112,21 @@ def plan(
 
 
 def fallback_strategies(options: PlannerOptions) -> list[PlannerOptions]:
-    """The default options, then wider fallbacks, no goal reordering, protected goals.
+    """The default options, then the paper's breadth-first expansion order, wider
+    fallbacks, no goal reordering, protected goals.
 
     Backchaining commits to the achievers it ranked best in the state it expanded
-    in; when that leads nowhere, starting over with more alternatives per condition,
-    or with the paper's own priority moves only, often does. The next strategy is also
+    in; when that leads nowhere, starting over with the breadth-first choice of the
+    condition to expand (nearest-first can commit a shared resource, a free arm, too
+    early), with more alternatives per condition, or with the paper's own priority
+    moves only, often does. The next strategy is also
     tried when the tree's last run succeeded once with the goal still false (later work
     undid a goal within one tick); if none does better, the first tree is returned.
     Deterministic: always the same list, in the same order.
     """
     return [
         options,
+        *([replace(options, closest_first=False)] if options.closest_first else []),
         replace(options, max_alternatives=options.max_alternatives * 2),
         replace(options, reorder_goals=False),
         replace(options, protect_goals=True),

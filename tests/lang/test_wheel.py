@@ -122,6 +122,7 @@ def test_installed_wheel_reads_both_grammars(tmp_path: Path) -> None:
     assert planned.returncode == 0, planned.stderr
     assert not (work / "pick_place_obstacle.bt").exists()
     assert json.loads((work / "tree.json").read_text())["root"]["type"] == "Fallback"
-    assert (work / "sas_plan").read_text().splitlines()[-1] == "(place cube goal)"
+    *steps, cost = (work / "sas_plan").read_text().splitlines()
+    assert steps[-1] == "(place cube goal)" and cost == f"; cost = {len(steps)} (unit cost)"
     where = run(python, "-c", "from btplan import shipped; print(shipped.folder())", cwd=work)
     assert Path(where.stdout.strip()).is_relative_to(venv)
