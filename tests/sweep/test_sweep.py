@@ -92,39 +92,29 @@ def test_the_cli_writes_sorted_rows_and_a_summary(tmp_path: Path) -> None:
     assert "| obstacle | btplan | 0 | 3 | 100% [44%, 100%] | 7 [7, 7] |" in result.stderr
 
 
-def test_ctrl_c_keeps_the_rows_already_done(tmp_path: Path,
-                                           monkeypatch: pytest.MonkeyPatch) -> None:
-    serial = pool.run_serial
-
-    def interrupted(job: Job, runs: list[pool.Run], on_row: pool.OnRow) -> None:
-        serial(job, runs[:2], on_row)
+def _stop_after_two_runs(signum: int) -> None:
+    """The signal arrives as Ctrl-C would (SIGINT: KeyboardInterrupt) or from `kill`."""
+    if signum == signal.SIGINT:
         raise KeyboardInterrupt
-
-    monkeypatch.setattr(pool, "run_serial", interrupted)
-    out = tmp_path / "rows.csv"
-    result = runner.invoke(app, ["sweep", OBSTACLE, "--scenario", "obstacle", "--seeds", "0:5",
-                                 "--rates", "0.1", "--method", "btplan", "-j", "1", "-o", str(out),
-                                 "-q"])
-    assert result.exit_code == 130
-    assert [r["seed"] for r in read_rows(str(out))] == [0, 1]
-    assert "2 of 5 runs written" in result.stderr
+    os.kill(os.getpid(), signum)
 
 
-def test_sigterm_keeps_the_rows_already_done_and_exits_143(
-        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+@pytest.mark.parametrize(("signum", "code"), [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_a_stopped_sweep_keeps_the_rows_already_done(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, signum: int, code: int) -> None:
     serial, before = pool.run_serial, signal.getsignal(signal.SIGTERM)
 
-    def terminated(job: Job, runs: list[pool.Run], on_row: pool.OnRow) -> None:
+    def stopped(job: Job, runs: list[pool.Run], on_row: pool.OnRow) -> None:
         serial(job, runs[:2], on_row)
-        os.kill(os.getpid(), signal.SIGTERM)
+        _stop_after_two_runs(signum)
         serial(job, runs[2:], on_row)  # never reached: the signal stops the sweep
 
-    monkeypatch.setattr(pool, "run_serial", terminated)
+    monkeypatch.setattr(pool, "run_serial", stopped)
     out = tmp_path / "rows.csv"
     result = runner.invoke(app, ["sweep", OBSTACLE, "--scenario", "obstacle", "--seeds", "0:5",
                                  "--rates", "0.1", "--method", "btplan", "-j", "1", "-o", str(out),
                                  "-q"])
-    assert result.exit_code == 143
+    assert result.exit_code == code
     assert [r["seed"] for r in read_rows(str(out))] == [0, 1]
     assert "2 of 5 runs written" in result.stderr
     assert signal.getsignal(signal.SIGTERM) is before
