@@ -3,10 +3,10 @@
 Builds the wheel from a copy of the sources (so the working tree stays clean), installs
 it with --no-deps into a fresh, isolated venv, and runs a check from an unrelated folder.
 The new venv borrows its dependencies from the interpreter running the suite (a path line
-in a .pth file), never from the machine's global site-packages: with
---system-site-packages, a venv made from the README's .venv would see the base
-interpreter's packages instead, and the test would pass only where lark happens to be
-installed globally.
+in a .pth file), never from the machine's global site-packages: a venv that sees the
+system's packages, made from the README's .venv, would see the base interpreter's
+packages instead, and the test would pass only where lark happens to be installed
+globally.
 """
 
 from __future__ import annotations
