@@ -14,14 +14,12 @@ import sys
 import traceback
 from collections.abc import Callable
 from contextvars import ContextVar
-from importlib import metadata
 from typing import Annotated, ParamSpec, TypeVar
 
 import typer
-from rich.console import Console
-from rich.markup import escape
 from typer.exceptions import TyperException
 
+from btplan.cli.console import LazyConsole, escape
 from btplan.cli.help import Group
 from btplan.errors import BtplanError, InputError, Interrupted, PlanningError
 from btplan.limits import abridge
@@ -59,13 +57,15 @@ app = typer.Typer(
     context_settings={"help_option_names": ["-h", "--help"]},
 )
 
-stderr = Console(stderr=True, highlight=False, soft_wrap=True)
+stderr = LazyConsole(stderr=True)
 
 P = ParamSpec("P")
 R = TypeVar("R")
 
 
 def version() -> str:
+    from importlib import metadata  # imports email and more: only when asked
+
     try:
         return metadata.version("btplan")
     except metadata.PackageNotFoundError:  # run from a checkout without installing

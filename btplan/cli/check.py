@@ -2,20 +2,19 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
-from rich.console import Console
-from rich.markup import escape
 
 from btplan.cli.app import EXIT_BAD_INPUT, app, format_input_error, guarded, stderr
-from btplan.lang import Collection, InputErrors, collect
-from btplan.lang.writers import bt_literal
-from btplan.model import ROOT_TYPE
-from btplan.shipped import resolve
+from btplan.cli.console import LazyConsole, escape
 
-stdout = Console(highlight=False, soft_wrap=True)
+if TYPE_CHECKING:
+    from btplan.lang import Collection
+
+stdout = LazyConsole()
 
 
 EXAMPLES = """Examples:
@@ -38,6 +37,9 @@ def check(
         "-q", "--quiet", help="Print nothing when all is well; errors only.")] = False,
 ) -> None:
     """Check domains and problems; print a summary, or every error with its place."""
+    from btplan.lang import InputErrors, collect  # the readers: only when a command reads
+    from btplan.shipped import resolve
+
     try:
         collection = collect([resolve(f) for f in files])
     except InputErrors as errors:
@@ -59,8 +61,8 @@ def check(
 
 def to_json(collection: Collection) -> dict[str, object]:
     return {
-        "domains": [d.model_dump(mode="json") for d in collection.domains],
-        "problems": [p.model_dump(mode="json") for p in collection.problems],
+        "domains": [dataclasses.asdict(d) for d in collection.domains],
+        "problems": [dataclasses.asdict(p) for p in collection.problems],
     }
 
 
@@ -70,6 +72,9 @@ def summary(collection: Collection) -> str:
     Plain lines rather than a table: a table folds long lists at the terminal width,
     and a summary should read the same in a pipe and on any screen.
     """
+    from btplan.lang.writers import bt_literal
+    from btplan.model import ROOT_TYPE
+
     lines: list[str] = []
     for domain in collection.domains:
         types = [t.name for t in domain.types if t.name != ROOT_TYPE or t.parent is not None]

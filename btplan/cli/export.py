@@ -7,10 +7,9 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.markup import escape
 
-from btplan.bt.formats import dump, json_schema, load_tree
 from btplan.cli.app import app, guarded, stderr
+from btplan.cli.console import escape
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Span
 from btplan.io import read_text
@@ -72,6 +71,8 @@ def export(
         "them from their shape.")] = False,
 ) -> None:
     """Convert a saved tree: BT.CPP v4 XML, graphviz DOT, btplan JSON or a text view."""
+    from btplan.bt.formats import dump, json_schema, load_tree  # only this command needs them
+
     out = out_alias if out_alias is not None else out
     check_outputs(Output("-o/--output", out))
     if schema:

@@ -7,21 +7,20 @@ import time
 from dataclasses import replace
 from enum import Enum
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
-from rich.markup import escape
 
-from btplan.acting.loop import Expansion
-from btplan.acting.offline import PlanResult, load, plan
-from btplan.bt import FAILURE, BehaviorTree, Condition
-from btplan.bt.formats import dump
 from btplan.cli.app import app, guarded, stderr
+from btplan.cli.console import escape
 from btplan.cli.interrupts import Interrupts
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Interrupted
-from btplan.planner import PlannerOptions
-from btplan.shipped import resolve
+
+if TYPE_CHECKING:
+    from btplan.acting.loop import Expansion
+    from btplan.acting.offline import PlanResult
+    from btplan.bt import BehaviorTree
 
 
 DEFAULT_TIMEOUT = 300.0
@@ -93,6 +92,13 @@ def plan_command(
     The tree goes to standard output (or -o FILE), the summary to standard error.
     Ctrl-C stops at the next tick: nothing is written, the summary says how far it got.
     """
+    # Imported here, not at the top: every command's module is imported when btplan
+    # starts, and the planner, the trees and their formats only serve this one.
+    from btplan.acting.offline import load, plan
+    from btplan.bt.formats import dump
+    from btplan.planner import PlannerOptions
+    from btplan.shipped import resolve
+
     out = out_alias if out_alias is not None else out
     limits = [("--max-expansions", max_expansions), ("--max-ticks", max_ticks)]
     if max_alternatives is not None:
@@ -164,6 +170,8 @@ class Progress:
         if not self.enabled or now - self.shown < 1.0:
             return
         self.shown = now
+        from btplan.bt import FAILURE, Condition
+
         nodes = tree.nodes()
         open_ = sum(1 for n in nodes if n.status is FAILURE and isinstance(n, Condition))
         line = (f"planning: {self.expansions} expansions, tree of {len(nodes)} nodes, "

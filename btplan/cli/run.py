@@ -9,25 +9,26 @@ from collections.abc import Callable, Mapping
 from enum import Enum
 from pathlib import Path
 from types import TracebackType
-from typing import Annotated, Any, Self
+from typing import TYPE_CHECKING, Annotated, Any, Self
 
 import typer
-from rich.markup import escape
-from rich.table import Table
 
-from btplan import acting
-from btplan.acting.live_view import LiveView
-from btplan.acting.records import TickRecord
-from btplan.bt import Node, Status
 from btplan.cli.app import EXIT_FAILED, app, guarded, stderr
+from btplan.cli.console import escape
 from btplan.cli.interrupts import Interrupts
 from btplan.cli.outputs import STDIO, LineStream, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Span, WorldError
 from btplan.io import read_text
-from btplan.model import Task
-from btplan.shipped import resolve
-from btplan.worlds.agents import Agent
-from btplan.worlds.disturb import DisturbSpec, parse_scenario, parse_spec
+
+if TYPE_CHECKING:
+    from rich.table import Table
+
+    from btplan import acting
+    from btplan.acting.records import TickRecord
+    from btplan.bt import Node, Status
+    from btplan.model import Task
+    from btplan.worlds.agents import Agent
+    from btplan.worlds.disturb import DisturbSpec
 
 
 class Sim(str, Enum):
@@ -95,6 +96,12 @@ def run(
     halted, the trace and the plan keep every finished tick, the summary is printed,
     and the exit code is 130 (143).
     """
+    # The acting layer and the worlds are imported here: every command's module is
+    # imported when btplan starts, and only this command (and sweep) acts.
+    from btplan import acting
+    from btplan.shipped import resolve
+    from btplan.worlds.disturb import parse_scenario, parse_spec
+
     if timeout is not None and timeout <= 0:
         raise InputError(f"--timeout must be positive, got {timeout:g}")
     check_outputs(Output("--trace", trace), Output("--plan-out", plan_out),
@@ -178,6 +185,7 @@ def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Ag
          max_ticks: int, rate: float | None, quiet: bool, keep: Callable[[TickRecord], None],
          stop: Callable[[], bool], world_name: str) -> acting.RunOutcome:
     """Act, with the live view on a terminal, progress lines in a pipe, or nothing (-q)."""
+    from btplan import acting
 
     def run_with(view: Callable[[Node, Mapping[int, Status], TickRecord], None] | None
                  ) -> acting.RunOutcome:
@@ -193,7 +201,9 @@ def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Ag
     if quiet:
         return run_with(None)
     if stderr.is_terminal:
-        with LiveView(stderr) as live:
+        from btplan.acting.live_view import LiveView
+
+        with LiveView(stderr.rich) as live:
             return run_with(live.show)
     return run_with(progress_line)
 
@@ -253,6 +263,8 @@ def open_world(task: Task, sim: Sim, scene: str | None, seed: int, gui: bool,
 
 def summary_table(result: acting.RunOutcome) -> Table:
     """Outcome, ticks, expansions (and when), conflicts, actions, disturbances."""
+    from rich.table import Table
+
     total = result.summary()
     table = Table(title="btplan run", show_header=False, box=None)
     table.add_column(style="bold")

@@ -9,27 +9,19 @@ from collections.abc import Iterator
 from types import FrameType
 from typing import Annotated, Any
 
+from typing import TYPE_CHECKING
+
 import typer
-from rich.markup import escape
-from rich.progress import (
-    BarColumn,
-    MofNCompleteColumn,
-    Progress,
-    TextColumn,
-    TimeElapsedColumn,
-    TimeRemainingColumn,
-)
 from typer.core import TyperCommand
 
-from btplan.acting.baselines import BASELINES, require_pyperplan
 from btplan.cli.app import app, guarded, stderr
+from btplan.cli.console import escape
 from btplan.cli.outputs import Output, check_outputs
 from btplan.cli.run import Sim
 from btplan.errors import InputError, Span
-from btplan.shipped import resolve
-from btplan.sweep import output, pool
-from btplan.sweep.runs import Job, Row, check_methods, prepared
-from btplan.sweep.stats import summarize
+
+if TYPE_CHECKING:
+    from btplan.sweep.runs import Row
 
 
 
@@ -147,6 +139,22 @@ def sweep(
     Exit 0 when every run ended (reached or not), 1 when some runs crashed (error
     rows), 2 on bad input, 130 on Ctrl-C and 143 on SIGTERM (the rows done so far are written).
     """
+    # Imported here: every command's module is imported when btplan starts.
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    from btplan.acting.baselines import BASELINES, require_pyperplan
+    from btplan.shipped import resolve
+    from btplan.sweep import output, pool
+    from btplan.sweep.runs import Job, check_methods, prepared
+    from btplan.sweep.stats import summarize
+
     files = [resolve(domain)] if problem is None else [resolve(domain), problem]
     check_outputs(Output("-o/--output", output_path), Output("--plot", plot))
     seed_range, rate_list = parse_seeds(seeds), parse_rates(rates)
@@ -167,7 +175,7 @@ def sweep(
     interrupted = False
     with Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
                   TimeElapsedColumn(), TextColumn("eta"), TimeRemainingColumn(),
-                  console=stderr, disable=quiet, transient=True) as progress:
+                  console=stderr.rich, disable=quiet, transient=True) as progress:
         task = progress.add_task("runs", total=len(runs))
 
         def on_row(row: Row) -> None:

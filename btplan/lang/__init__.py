@@ -1,7 +1,29 @@
-"""Read domains and problems (the .bt language and PDDL) into checked models."""
+"""Read domains and problems (the .bt language and PDDL) into checked models.
 
-from btplan.lang.loader import BtFile, Collection, collect, load, load_domain, parse_bt
-from btplan.lang.report import InputErrors
+The readers build their parsers from the grammars (lark) when first imported; the
+names below are imported on first use (PEP 562), so that a submodule that needs no
+parser (the problem generators, the writers) can be imported without them.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from btplan.lang.loader import BtFile, Collection, collect, load, load_domain, parse_bt
+    from btplan.lang.report import InputErrors
+
+_HOMES = {"BtFile": "loader", "Collection": "loader", "collect": "loader", "load": "loader",
+          "load_domain": "loader", "parse_bt": "loader", "InputErrors": "report"}
+
+
+def __getattr__(name: str) -> Any:
+    home = _HOMES.get(name)
+    if home is None:
+        raise AttributeError(f"module 'btplan.lang' has no attribute {name!r}")
+    return getattr(importlib.import_module(f"btplan.lang.{home}"), name)
+
 
 __all__ = [
     "BtFile",

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-import btplan.cli.plan
+import btplan.acting.offline
 from btplan.cli import app
 from btplan.cli.app import EXIT_CODES
 
@@ -62,7 +62,7 @@ def test_an_unexpected_exception_is_a_bug_with_exit_3(monkeypatch: pytest.Monkey
     def broken(*args: object, **kwargs: object) -> None:
         raise ZeroDivisionError("division by zero")
 
-    monkeypatch.setattr(btplan.cli.plan, "plan", broken)
+    monkeypatch.setattr(btplan.acting.offline, "plan", broken)
     monkeypatch.delenv("BTPLAN_DEBUG", raising=False)
     result = runner.invoke(app, ["plan", PICK])
     assert result.exit_code == 3
@@ -79,7 +79,7 @@ def test_debug_flag_shows_the_traceback(monkeypatch: pytest.MonkeyPatch) -> None
     def broken(*args: object, **kwargs: object) -> None:
         raise KeyError("x")
 
-    monkeypatch.setattr(btplan.cli.plan, "plan", broken)
+    monkeypatch.setattr(btplan.acting.offline, "plan", broken)
     monkeypatch.delenv("BTPLAN_DEBUG", raising=False)
     result = runner.invoke(app, ["--debug", "plan", PICK])
     assert result.exit_code == 3 and "Traceback (most recent call last)" in result.stderr

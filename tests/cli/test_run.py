@@ -139,10 +139,11 @@ def test_on_a_terminal_the_live_view_draws_the_tree(monkeypatch: pytest.MonkeyPa
     from rich.console import Console
 
     import btplan.cli.run as run_command
+    from btplan.cli.console import LazyConsole
 
     screen = StringIO()
     terminal = Console(file=screen, force_terminal=True, width=100, color_system=None)
-    monkeypatch.setattr(run_command, "stderr", terminal)
+    monkeypatch.setattr(run_command, "stderr", LazyConsole(stderr=True, rich=terminal))
     result = runner.invoke(app, ["run", PICK_PLACE, "--disturb", "undo:Pick@11"])
     assert result.exit_code == 0, result.output
     shown = screen.getvalue()

@@ -1,8 +1,8 @@
 """Saved trees: the pydantic models of btplan's JSON tree format, and the exact round trip.
 
-This is what `btplan plan --format json` prints and `btplan export` reads back. The
-models are the schema (`btplan export json --schema`); `to_model`/`from_model` convert
-to and from live nodes without loss, so dump -> load -> dump gives the same text.
+This is what `btplan plan --format json` prints (written by saved_out.py, which needs
+no pydantic) and `btplan export` reads back. The models are the schema (`btplan export
+json --schema`); `to_model`/`from_model` convert to and from live nodes without loss, so dump -> load -> dump gives the same text.
 Fields that hold their default are left out of the JSON to keep files readable.
 """
 
@@ -11,17 +11,18 @@ from __future__ import annotations
 import json
 import re
 import sys
-from typing import Any, Literal
+from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from btplan.bt.composites import Fallback, Sequence
 from btplan.bt.decorators import Decorator, ForceFailure, ForceSuccess, Inverter, Retry, Timeout
 from btplan.bt.formats.locate import line_at, locate
-from btplan.bt.leaves import Action, Condition, Leaf, leaf_label
+from btplan.bt.formats.saved_out import dump_json, tree_data
+from btplan.bt.leaves import Action, Condition
 from btplan.bt.node import Node
 from btplan.bt.parallel import Parallel
-from btplan.bt.status import IDLE, Status
+from btplan.bt.status import Status
 from btplan.bt.tree import BehaviorTree
 from btplan.errors import InputError, Span
 from btplan.limits import (
@@ -95,46 +96,9 @@ class SavedTree(BaseModel):
     root: SavedNode
 
 
-def _representable(node: Node) -> None:
-    """Refuse, with a clear error, what only BT.CPP XML can hold (its other built-ins,
-    custom controls, condition scripts, retrying for ever)."""
-    kind = node.kind
-    if kind not in NODE_TYPES or (node.origin is not None and node.origin.guard is not None):
-        what = node.origin.tag if node.origin is not None else kind
-        raise InputError(f"{what} cannot be saved in btplan's JSON format",
-                         hint="export this tree as xml (or dot, ascii)")
-    if isinstance(node, Retry) and node.attempts < 1:
-        raise InputError("a Retry that tries for ever cannot be saved in btplan's JSON format",
-                         hint="export this tree as xml")
-
-
-def _node_model(node: Node, with_status: bool) -> SavedNode:
-    _representable(node)
-    fields: dict[str, Any] = {"type": node.kind}
-    if isinstance(node, Leaf):
-        fields.update(ident=node.ident, args=node.args, ports=node.ports)
-        if node.name != leaf_label(node.ident, node.args):
-            fields["name"] = node.name
-    else:
-        fields["name"] = node.name
-    if isinstance(node, (Sequence, Fallback)):
-        fields["memory"] = node.memory
-    elif isinstance(node, Retry):
-        fields["attempts"] = node.attempts
-    elif isinstance(node, Timeout):
-        fields["ticks"] = node.ticks
-    elif isinstance(node, Parallel):
-        fields.update(success=node.success, failure=node.failure)
-    if with_status and node.status is not IDLE:
-        fields["status"] = node.status.value
-    fields["children"] = tuple(_node_model(c, with_status) for c in node.children)
-    return SavedNode(**fields)
-
-
 def to_model(tree: BehaviorTree, with_status: bool = False) -> SavedTree:
     """The saved form of a live tree; statuses only when asked (a snapshot for display)."""
-    return SavedTree(format=FORMAT, version=VERSION, name=tree.name,
-                     root=_node_model(tree.root, with_status))
+    return SavedTree.model_validate(tree_data(tree, with_status))
 
 
 _PLAIN: dict[str, type[Decorator]] = {
@@ -168,22 +132,6 @@ def _build(saved: SavedNode) -> Node:
 def from_model(saved: SavedTree) -> BehaviorTree:
     """A live tree from its saved form; saved statuses are restored as last statuses."""
     return BehaviorTree(_build(saved.root), name=saved.name)
-
-
-def dump_json(tree: BehaviorTree, with_status: bool = False) -> str:
-    """Indented JSON with short lists (args, ports) kept on one line."""
-    data = to_model(tree, with_status).model_dump(mode="json", exclude_defaults=True)
-    return _dumps(data, "") + "\n"
-
-
-def _dumps(value: Any, indent: str) -> str:
-    inner = indent + "  "
-    if isinstance(value, dict) and value:
-        items = [f"{inner}{json.dumps(k)}: {_dumps(v, inner)}" for k, v in value.items()]
-        return "{\n" + ",\n".join(items) + "\n" + indent + "}"
-    if isinstance(value, list) and any(isinstance(v, (dict, list)) for v in value):
-        return "[\n" + ",\n".join(inner + _dumps(v, inner) for v in value) + "\n" + indent + "]"
-    return json.dumps(value, ensure_ascii=False)
 
 
 def json_schema() -> str:

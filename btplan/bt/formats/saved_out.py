@@ -1,0 +1,95 @@
+"""Writing btplan's JSON tree format without its pydantic models.
+
+`btplan plan` prints every tree it builds in this format, and importing pydantic and
+validating a model per node cost more than planning a small problem. This writer
+builds the same dictionaries that `SavedTree.model_dump(mode="json",
+exclude_defaults=True)` gives (saved.py holds the models, the schema and the reader;
+tests/bt/test_saved_json.py checks that the two agree), in the models' field order.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from btplan.bt.composites import Fallback, Sequence
+from btplan.bt.decorators import Retry, Timeout
+from btplan.bt.leaves import Leaf, leaf_label
+from btplan.bt.node import Node
+from btplan.bt.parallel import Parallel
+from btplan.bt.status import IDLE
+from btplan.bt.tree import BehaviorTree
+from btplan.errors import InputError
+
+FORMAT = "btplan-tree"
+VERSION = 1
+DEFAULT_NAME = "Main"
+NODE_TYPES = ("Sequence", "Fallback", "Parallel", "Inverter", "ForceSuccess", "ForceFailure",
+              "Retry", "Timeout", "Condition", "Action")
+
+
+def representable(node: Node) -> None:
+    """Refuse, with a clear error, what only BT.CPP XML can hold (its other built-ins,
+    custom controls, condition scripts, retrying for ever)."""
+    kind = node.kind
+    if kind not in NODE_TYPES or (node.origin is not None and node.origin.guard is not None):
+        what = node.origin.tag if node.origin is not None else kind
+        raise InputError(f"{what} cannot be saved in btplan's JSON format",
+                         hint="export this tree as xml (or dot, ascii)")
+    if isinstance(node, Retry) and node.attempts < 1:
+        raise InputError("a Retry that tries for ever cannot be saved in btplan's JSON format",
+                         hint="export this tree as xml")
+
+
+def node_data(node: Node, with_status: bool) -> dict[str, Any]:
+    """One node and its children, fields holding their default left out."""
+    representable(node)
+    data: dict[str, Any] = {"type": node.kind}
+    name = node.name
+    if name and not (isinstance(node, Leaf) and name == leaf_label(node.ident, node.args)):
+        data["name"] = name
+    if isinstance(node, (Sequence, Fallback)) and node.memory:
+        data["memory"] = True
+    if isinstance(node, Leaf):
+        data["ident"] = node.ident
+        if node.args:
+            data["args"] = list(node.args)
+        if node.ports:
+            data["ports"] = list(node.ports)
+    if isinstance(node, Retry) and node.attempts != 1:
+        data["attempts"] = node.attempts
+    if isinstance(node, Timeout) and node.ticks != 1:
+        data["ticks"] = node.ticks
+    if isinstance(node, Parallel):
+        if node.success != -1:
+            data["success"] = node.success
+        if node.failure != 1:
+            data["failure"] = node.failure
+    if with_status and node.status is not IDLE:
+        data["status"] = node.status.value
+    if node.children:
+        data["children"] = [node_data(c, with_status) for c in node.children]
+    return data
+
+
+def tree_data(tree: BehaviorTree, with_status: bool = False) -> dict[str, Any]:
+    data: dict[str, Any] = {"format": FORMAT, "version": VERSION}
+    if tree.name != DEFAULT_NAME:
+        data["name"] = tree.name
+    data["root"] = node_data(tree.root, with_status)
+    return data
+
+
+def dump_json(tree: BehaviorTree, with_status: bool = False) -> str:
+    """Indented JSON with short lists (args, ports) kept on one line."""
+    return _dumps(tree_data(tree, with_status), "") + "\n"
+
+
+def _dumps(value: Any, indent: str) -> str:
+    inner = indent + "  "
+    if isinstance(value, dict) and value:
+        items = [f"{inner}{json.dumps(k)}: {_dumps(v, inner)}" for k, v in value.items()]
+        return "{\n" + ",\n".join(items) + "\n" + indent + "}"
+    if isinstance(value, list) and any(isinstance(v, (dict, list)) for v in value):
+        return "[\n" + ",\n".join(inner + _dumps(v, inner) for v in value) + "\n" + indent + "]"
+    return json.dumps(value, ensure_ascii=False)

@@ -1,0 +1,66 @@
+"""`btplan plan` starts lean: it imports what planning needs and nothing heavy besides.
+
+Start-up counts in every whole-process comparison with other planners, and a small
+problem plans in less time than rich, pydantic or PyBullet take to import. So the
+checks below look at `sys.modules` of a fresh interpreter (not at a clock): after
+`import btplan.cli`, and after a whole `btplan plan` run of a small PDDL problem.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+from btplan.lang.generators import generate
+
+HEAVY = ("rich", "pydantic", "pybullet", "numpy", "matplotlib", "email", "importlib.metadata",
+         "btplan.bt.formats.btcpp", "btplan.bt.formats.saved", "btplan.acting.live_view",
+         "btplan.sweep", "btplan.worlds.pybullet")
+"""Modules (and their submodules) that neither start-up nor a plain `btplan plan` needs."""
+
+REPORT = """
+import json, sys
+{body}
+print(json.dumps(sorted(sys.modules)))
+"""
+
+
+def imported_by(body: str) -> set[str]:
+    """The modules a fresh interpreter holds after running `body`."""
+    done = subprocess.run([sys.executable, "-c", REPORT.format(body=body)], capture_output=True,
+                          text=True, timeout=300, check=True)
+    return set(json.loads(done.stdout.splitlines()[-1]))
+
+
+def heavy(modules: set[str]) -> list[str]:
+    return sorted(m for m in modules if any(m == h or m.startswith(h + ".") for h in HEAVY))
+
+
+def test_importing_the_command_line_imports_no_planner_and_nothing_heavy() -> None:
+    modules = imported_by("import btplan.cli")
+    assert heavy(modules) == []
+    assert not {"btplan.acting", "btplan.planner", "btplan.bt", "lark"} & modules
+
+
+def test_importing_btplan_leaves_the_acting_layer_until_it_is_used() -> None:
+    modules = imported_by("import btplan")
+    assert "btplan.acting" not in modules
+    modules = imported_by("import btplan; btplan.load")
+    assert "btplan.acting" in modules
+
+
+def test_a_whole_plan_run_imports_nothing_heavy(tmp_path: Path) -> None:
+    domain_text, problem_text = generate("blocksworld", "pddl", seed=1, blocks=4)
+    (tmp_path / "d.pddl").write_text(domain_text)
+    (tmp_path / "p.pddl").write_text(problem_text)
+    plan_file = tmp_path / "plan.txt"
+    argv = ["btplan", "plan", str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl"),
+            "-o", str(tmp_path / "tree.json"), "--plan-out", str(plan_file)]
+    modules = imported_by(
+        f"from btplan.cli import main\nsys.argv = {argv!r}\n"
+        "try:\n    main()\nexcept SystemExit as done:\n    assert done.code == 0, done.code")
+    assert plan_file.read_text().startswith("(")  # it did plan
+    assert "btplan.planner" in modules
+    assert heavy(modules) == []
