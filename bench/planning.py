@@ -15,6 +15,9 @@ are validated against the domain before they count as solved.
                                                     # as published (docs/planner.md)
     python bench/planning.py --corpus DIR           # competition-layout domains, whole
                                                     # processes, beside peers (bench/corpus.py)
+    python bench/planning.py --scale blocksworld --sizes 50,100,200 --timeout 300
+                                                    # growing generated problems, whole
+                                                    # processes, beside peers (bench/scaling.py)
 """
 
 from __future__ import annotations
@@ -269,9 +272,28 @@ def main() -> None:
     parser.add_argument("--per-domain", type=int, default=3,
                         help="with --corpus: the N smallest problems of each domain")
     parser.add_argument("--planners", default="btplan,pyperplan,fd",
-                        help="with --corpus: planners to run (fd needs the 'fd' extra)")
+                        help="with --corpus or --scale: planners to run (fd needs the 'fd' "
+                             "extra)")
     parser.add_argument("--only", help="with --corpus: comma-separated domain folders")
+    parser.add_argument("--scale", metavar="DOMAINS",
+                        help="comma-separated generated domains, grown until a planner fails, "
+                             "each planner a whole process (--planners, --sizes, --plot)")
     args = parser.parse_args()
+    if args.scale:
+        import scaling
+
+        planners = args.planners.split(",")
+        names = args.scale.split(",")
+        sizes = dict(scaling.SIZES)
+        if args.sizes:
+            sizes.update({d: [int(x) for x in args.sizes.split(",")] for d in names})
+        points = scaling.scale(names, sizes, planners, args.timeout)
+        print()
+        print("\n".join(scaling.report(points, planners, args.timeout)))
+        if args.plot:
+            scaling.plot(points, planners, args.plot)
+            print(f"plot: {args.plot}")
+        return
     if args.corpus:
         from corpus import bench_corpus, report
 

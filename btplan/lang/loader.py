@@ -13,7 +13,6 @@ from pathlib import Path
 
 from btplan.errors import InputError, Span
 from btplan.io import STDIO, read_text
-from btplan.lang.bt_reader import read_bt
 from btplan.lang.names import check_unique, suggest
 from btplan.lang.report import Report
 from btplan.lang.syntax import DomainSyntax, ProblemSyntax
@@ -79,6 +78,8 @@ class Collection:
 
 def parse_bt(text: str, path: str) -> BtFile:
     """Parse and check one .bt text (domain and/or problems)."""
+    from btplan.lang.bt_reader import read_bt  # builds its lark parser: only for .bt text
+
     domains, problems = _split(read_bt(text, path))
     if len(domains) > 1:
         raise domains[1].name.at.error(
@@ -102,6 +103,8 @@ def read_units(path: str) -> tuple[list[DomainSyntax], list[ProblemSyntax]]:
         from btplan.lang.pddl_reader import read_pddl
 
         return _split(read_pddl(text, path))
+    from btplan.lang.bt_reader import read_bt  # builds its lark parser: only for .bt text
+
     return _split(read_bt(text, path))
 
 

@@ -2,19 +2,26 @@
 
 Only lists and tokens are found here; btplan/lang/pddl_reader.py gives them meaning.
 Reading is iterative, and nesting is bounded before it starts (btplan/limits.py).
+
+Well-formed text is read by one regular expression with the grammar's tokens, which
+takes a few milliseconds; building the lark parser from the grammar took longer than
+planning a small problem (start-up counts for a command-line planner). Text that the
+fast reader refuses goes to the lark parser, so that every syntax error is worded
+and located as before (btplan/lang/diagnostics.py).
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import cache
+from typing import TYPE_CHECKING
 
-from lark import Lark, Token, Transformer_NonRecursive
-from lark.exceptions import UnexpectedInput
-
-from btplan.lang.diagnostics import syntax_error
 from btplan.lang.syntax import Source, Where
 from btplan.limits import MAX_NESTING, PDDL_BRACKETS, check_nesting, check_size
+
+if TYPE_CHECKING:
+    from lark import Lark, Token, Transformer_NonRecursive
 
 WORDS = {
     "NAME": "a name",
@@ -52,7 +59,23 @@ Item = Word | Group
 @cache
 def pddl_parser() -> Lark:
     """The PDDL s-expression parser, loaded from the installed package data."""
+    from lark import Lark
+
     return Lark.open_from_package("btplan.grammar", "pddl.lark", parser="lalr")
+
+
+TOKENS = re.compile(r"""
+    (?P<SKIP>[ \t\f\r\n]+|;[^\n]*)
+  | (?P<LPAR>\()
+  | (?P<RPAR>\))
+  | (?P<NAME>[A-Za-z][A-Za-z0-9_\-]*)
+  | (?P<VARIABLE>\?[A-Za-z][A-Za-z0-9_\-]*)
+  | (?P<KEYWORD>:[A-Za-z][A-Za-z0-9_\-]*)
+  | (?P<NUMBER>[0-9]+(?:\.[0-9]+)?)
+  | (?P<SYMBOL>[-=<>*/+]+)
+""", re.VERBOSE)
+"""The terminals of grammar/pddl.lark, whitespace and comments first; their first
+characters differ, so the first alternative that matches is lark's longest match."""
 
 
 def read_items(text: str, path: str) -> list[Item]:
@@ -65,16 +88,72 @@ def read_items(text: str, path: str) -> list[Item]:
     check_nesting(text, path, PDDL_BRACKETS,
                   message=f"parentheses nested more than {MAX_NESTING} levels deep")
     source = Source(text, path)
+    items = _read_fast(text, source)
+    return items if items is not None else _read_with_lark(text, source)
+
+
+def _read_fast(text: str, source: Source) -> list[Item] | None:
+    """The items of well-formed text; None for anything else (lark then says what)."""
+    stack: list[tuple[list[Item], Where | None]] = [([], None)]
+    line, line_start = 1, 0
+    position, end = 0, len(text)
+    match = TOKENS.match
+    while position < end:
+        found = match(text, position)
+        if found is None:
+            return None
+        kind = found.lastgroup
+        start, position = position, found.end()
+        column = start - line_start + 1
+        if kind == "SKIP":
+            breaks = text.count("\n", start, position)
+            if breaks:
+                line += breaks
+                line_start = text.rindex("\n", start, position) + 1
+        elif kind == "LPAR":
+            stack.append(([], source.at(line, column)))
+        elif kind == "RPAR":
+            if len(stack) == 1:
+                return None
+            children, opened = stack.pop()
+            assert opened is not None
+            stack[-1][0].append(Group(tuple(children), opened))
+        else:
+            assert kind is not None
+            word = found.group()
+            stack[-1][0].append(Word(word if kind == "SYMBOL" else word.lower(), kind,
+                                     source.at(line, column)))
+    return stack[0][0] if len(stack) == 1 else None
+
+
+def _read_with_lark(text: str, source: Source) -> list[Item]:
+    """Parse with the grammar: a located, worded syntax error for text the fast reader
+    refused (and the items, should the two ever disagree)."""
+    from lark.exceptions import UnexpectedInput
+
+    from btplan.lang.diagnostics import syntax_error
+
     parser = pddl_parser()
     try:
         tree = parser.parse(text)
     except UnexpectedInput as error:
         raise syntax_error(error, parser, source, WORDS) from None
-    items: list[Item] = _ToItems(source).transform(tree)
+    items: list[Item] = _to_items(source).transform(tree)
     return items
 
 
-class _ToItems(Transformer_NonRecursive):  # type: ignore[type-arg]
+def _to_items(source: Source) -> Transformer_NonRecursive:  # type: ignore[type-arg]
+    from lark import Transformer_NonRecursive
+
+    class ToItems(_ToItems, Transformer_NonRecursive):  # type: ignore[type-arg]
+        pass
+
+    return ToItems(source)
+
+
+class _ToItems:
+    """Lark's tree to items (mixed into lark's transformer when lark is imported)."""
+
     def __init__(self, source: Source) -> None:
         super().__init__()
         self.source = source
@@ -92,7 +171,7 @@ class _ToItems(Transformer_NonRecursive):  # type: ignore[type-arg]
 
     def list(self, children: list[Token | Group]) -> Group:
         opening = children[0]
-        assert isinstance(opening, Token)
+        assert not isinstance(opening, Group)
         where = self.source.at(opening.line or 1, opening.column or 1)
         return Group(self._items(children[1:-1]), where)
 
