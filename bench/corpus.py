@@ -143,7 +143,23 @@ def run_one(planner: str, domain: Path, problem: Path, limit: float) -> Run:
     return Run(True, seconds, rss, len(steps), cost)
 
 
+def compile_btplan() -> None:
+    """Write btplan's bytecode once, as pip does when it installs a wheel.
+
+    An editable install compiles its sources on first import, and not at all when
+    PYTHONDONTWRITEBYTECODE is set: then every btplan process would recompile them
+    while the peers, installed from wheels, load bytecode.
+    """
+    import compileall
+
+    import btplan
+
+    compileall.compile_dir(str(Path(btplan.__file__).parent), quiet=1)
+
+
 def available(planners: list[str]) -> list[str]:
+    if "btplan" in planners:
+        compile_btplan()
     kept = []
     for planner in planners:
         if planner == "pyperplan" and importlib.util.find_spec("pyperplan") is None:

@@ -3,11 +3,31 @@
 `loop` ticks the tree and grows it where it fails; `offline` plans a tree from the
 initial state; `online` acts with external agents and records each tick; `records`
 holds the per-tick records and the run summary; `live_view` draws them in a terminal.
+The names below are imported on first use (PEP 562): planning needs neither the
+online loop nor its agents.
 """
 
-from btplan.acting.loop import BlendedLoop, Expansion, TickReport
-from btplan.acting.offline import PlanResult, PlanStats, load, plan
-from btplan.acting.online import ACTING_OPTIONS, RunOutcome, run
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from btplan.acting.loop import BlendedLoop, Expansion, TickReport
+    from btplan.acting.offline import PlanResult, PlanStats, load, plan
+    from btplan.acting.online import ACTING_OPTIONS, RunOutcome, run
+
+_HOMES = {"BlendedLoop": "loop", "Expansion": "loop", "TickReport": "loop",
+          "PlanResult": "offline", "PlanStats": "offline", "load": "offline", "plan": "offline",
+          "ACTING_OPTIONS": "online", "RunOutcome": "online", "run": "online"}
+
+
+def __getattr__(name: str) -> Any:
+    home = _HOMES.get(name)
+    if home is None:
+        raise AttributeError(f"module 'btplan.acting' has no attribute {name!r}")
+    return getattr(importlib.import_module(f"btplan.acting.{home}"), name)
+
 
 __all__ = [
     "ACTING_OPTIONS",

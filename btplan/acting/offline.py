@@ -15,17 +15,29 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING, Any
 
 from btplan.acting.loop import BlendedLoop, Expansion, TickReport
-
-# Acting with disturbances (`btplan.run`) lives in btplan.acting.online; re-exported here.
-from btplan.acting.online import RunOutcome as RunOutcome  # noqa: PLC0414
-from btplan.acting.online import run as run  # noqa: PLC0414
 from btplan.bt import BehaviorTree, LeafKey
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex, PlannerOptions
 from btplan.worlds.symbolic import SymbolicWorld
+
+if TYPE_CHECKING:
+    from btplan.acting.online import RunOutcome as RunOutcome  # noqa: PLC0414
+    from btplan.acting.online import run as run  # noqa: PLC0414
+
+
+def __getattr__(name: str) -> Any:
+    """Acting with disturbances (`btplan.run`) lives in btplan.acting.online and is
+    re-exported here, imported on first use: planning does not need it."""
+    if name in ("run", "RunOutcome"):
+        from btplan.acting import online
+
+        return getattr(online, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 DEFAULT_MAX_TICKS = 100_000
 

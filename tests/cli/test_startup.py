@@ -16,7 +16,7 @@ from pathlib import Path
 from btplan.lang.generators import generate
 
 HEAVY = ("rich", "pydantic", "pybullet", "numpy", "matplotlib", "email", "importlib.metadata",
-         "lark", "btplan.lang.bt_reader",
+         "lark", "btplan.lang.bt_reader", "btplan.acting.online", "btplan.worlds.disturb",
          "btplan.bt.formats.btcpp", "btplan.bt.formats.saved", "btplan.acting.live_view",
          "btplan.sweep", "btplan.worlds.pybullet")
 """Modules (and their submodules) that neither start-up nor `btplan plan` of well-formed
