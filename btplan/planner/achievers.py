@@ -79,7 +79,8 @@ class AchieverIndex:
         """h^2 mutexes from the initial state, built on first use."""
         shared = self._shared
         if shared.mutexes is None:
-            shared.mutexes = Mutexes(self.relaxed.actions, self.task.initial_state)
+            shared.mutexes = Mutexes(self.relaxed.actions, self.task.initial_state,
+                                     self.task.domain)
         return shared.mutexes
 
     def achievers(

@@ -8,19 +8,30 @@ pairs are mutually exclusive, and h^2 (Haslum and Geffner, 2000) finds them: a p
 reachable if some action adds one atom while the other holds with all its
 preconditions; pairs never reached are mutexes. Rows are Python ints used as bit
 sets, so the fixpoint stays fast without extra dependencies.
+
+h^2 costs the square of the number of atoms in memory and more in time: beyond
+H2_MAX_ATOMS atoms (a 40-block blocksworld has 1,700, a 100-block one 10,000), and
+when the domain is given, the mutexes come from lifted invariants instead
+(btplan/planner/invariants.py): fewer pairs, found at a cost that does not grow
+with the number of objects.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 
-from btplan.model import Atom, GroundAction, GroundLiteral, matches
+from btplan.model import Atom, Domain, GroundAction, GroundLiteral, matches
+from btplan.planner.invariants import MutexGroups
+
+H2_MAX_ATOMS = 2000
+"""Above this many atoms, and given the domain, mutexes come from invariants."""
 
 
 class Mutexes:
-    """h^2 mutexes over the atoms of a grounded domain."""
+    """h^2 mutexes over the atoms of a grounded domain (or invariant groups, when large)."""
 
-    def __init__(self, actions: Sequence[GroundAction], initial: Iterable[Atom]) -> None:
+    def __init__(self, actions: Sequence[GroundAction], initial: Iterable[Atom],
+                 domain: Domain | None = None, h2_max_atoms: int = H2_MAX_ATOMS) -> None:
         init = sorted(set(initial))
         universe: dict[Atom, int] = {}
         for atom in init:
@@ -29,6 +40,10 @@ class Mutexes:
             for atom in [*(p.atom for p in action.preconditions), *action.add, *action.delete]:
                 universe.setdefault(atom, len(universe))
         self._index = universe
+        self.groups: MutexGroups | None = None
+        if domain is not None and len(universe) > h2_max_atoms:
+            self.groups = MutexGroups(domain, init)
+            return
         atoms = list(universe)
         self._rows = [0] * len(atoms)
         self._reached = 0
@@ -101,6 +116,8 @@ class Mutexes:
             row(i)
 
     def knows(self, atom: Atom) -> bool:
+        if self.groups is not None:
+            return atom in self._index and self.groups.covers(atom)
         return atom in self._index
 
     def exclusive(self, a: GroundLiteral, b: GroundLiteral) -> bool:
@@ -109,6 +126,8 @@ class Mutexes:
             return a.positive != b.positive
         if not (a.positive and b.positive):
             return False
+        if self.groups is not None:
+            return self.groups.exclusive(a.atom, b.atom)
         i, j = self._index.get(a.atom), self._index.get(b.atom)
         if i is None or j is None:
             return False
