@@ -8,11 +8,31 @@ from btplan.cli.app import EXIT_BUG, app, report_bug
 
 def main() -> None:
     """The console script; a bug outside any command still ends in one line and exit 3."""
+    only_the_command_asked_for(sys.argv[1:2])
     try:
         app(prog_name="btplan")
     except Exception as error:  # commands report their own; this is the last net
         report_bug(error)
         sys.exit(EXIT_BUG)
+
+
+def only_the_command_asked_for(first: list[str]) -> None:
+    """Keep on the app only the command that the first argument names, if it names one.
+
+    typer reads the signature of every command (annotations evaluated, parameters
+    built) before it runs any; for seven commands that took longer than planning a
+    small problem. The command's own parsing, help and errors are unchanged; anything
+    else (`btplan --help`, a misspelt command, options before the command) keeps the
+    whole app.
+    """
+    if not first:
+        return
+    name = first[0]
+    commands = [c for c in app.registered_commands
+                if (c.name or getattr(c.callback, "__name__", "").replace("_", "-")) == name]
+    groups = [g for g in app.registered_groups if g.name == name]
+    if commands or groups:
+        app.registered_commands, app.registered_groups = commands, groups
 
 
 __all__ = ["app", "main"]
