@@ -66,3 +66,19 @@ def test_a_whole_plan_run_imports_nothing_heavy(tmp_path: Path) -> None:
     assert plan_file.read_text().startswith("(")  # it did plan
     assert "btplan.planner" in modules
     assert heavy(modules) == []
+
+
+def test_the_console_script_builds_only_the_command_it_runs() -> None:
+    script = ("import sys\nfrom btplan.cli import app, only_the_command_asked_for\n"
+              "only_the_command_asked_for(sys.argv[1:2])\n"
+              "print(len(app.registered_commands) + len(app.registered_groups))\n")
+    counts = [subprocess.run([sys.executable, "-c", script, *argv], capture_output=True,
+                             text=True, timeout=300, check=True).stdout.strip()
+              for argv in (["plan", "x.pddl"], ["generate"], ["--debug", "plan"], ["plna"], [])]
+    assert counts == ["1", "1", "6", "6", "6"]
+
+
+def test_a_misspelt_command_is_still_named_by_the_whole_app() -> None:
+    done = subprocess.run([sys.executable, "-m", "btplan", "plna", "x"], capture_output=True,
+                          text=True, timeout=300)
+    assert done.returncode == 2 and "No such command 'plna'" in done.stderr
