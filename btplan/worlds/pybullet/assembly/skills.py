@@ -49,21 +49,29 @@ class Scripted:
     def step(self) -> Status:
         if self.status is not None:
             return self.status
+        # `done` is read after the physics moved and again after the script acted (it may
+        # have just let go), so the tree never sees the effects before this skill does.
         try:
             if not self.started:
                 self.started = True
                 next(self.script)
             for _ in range(self.substeps):
                 self.state.sim.step()
-                if self.done():
-                    self.script.close()
-                    self.status = SUCCESS
+                if self._finished():
                     return SUCCESS
                 next(self.script)
+                if self._finished():
+                    return SUCCESS
         except StopIteration as finished:
             self.status = SUCCESS if finished.value is SUCCESS and self.done() else FAILURE
             return self.status
         return RUNNING
+
+    def _finished(self) -> bool:
+        if self.done():
+            self.script.close()
+            self.status = SUCCESS
+        return self.status is SUCCESS
 
     def halt(self) -> None:
         self.script.close()
@@ -150,10 +158,15 @@ def set_down(state: AssemblyState, timings: Timings, arm: str, part: str,
     return SUCCESS
 
 
-def rolled(turn: Quat, axis: Vec) -> list[Quat]:
-    """`turn`, and `turn` followed by half a turn about `axis` (the hand's other roll)."""
-    half = (axis[0], axis[1], axis[2], 0.0)
-    return [turn, multiply(half, turn)]
+def rolled(turn: Quat, axis: Vec, quarters: int = 2) -> list[Quat]:
+    """`turn`, then `turn` followed by a quarter (or half) turn about `axis`, and so on:
+    the same approach with the hand rolled, one of which the wrist's limits allow."""
+    out = []
+    for k in range(quarters):
+        angle = 2 * math.pi * k / quarters
+        s = math.sin(angle / 2)
+        out.append(multiply((axis[0] * s, axis[1] * s, axis[2] * s, math.cos(angle / 2)), turn))
+    return out
 
 
 def solvable(state: AssemblyState, timings: Timings, arm: str,
@@ -193,7 +206,7 @@ def handover(state: AssemblyState, timings: Timings, part: str, giver: str,
     d = (dx / norm, dy / norm, 0.0)
     _, hand = g.tip()
     pitch = turn_between(g.approach(), d)
-    options = [(state.scene.handover, multiply(turn, hand)) for turn in rolled(pitch, d)]
+    options = [(state.scene.handover, multiply(turn, hand)) for turn in rolled(pitch, d, 4)]
     chosen = solvable(state, timings, giver, options)
     if chosen is None or not (yield from mv.reach(state, timings, giver, *chosen, part)):
         return FAILURE
