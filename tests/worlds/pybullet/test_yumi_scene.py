@@ -19,6 +19,9 @@ from btplan.acting.online import RunOutcome, run
 from btplan.cli import app
 from btplan.model import Task
 from btplan.worlds.pybullet import AssemblyWorld, open_world
+from btplan.worlds.pybullet.arm import Timings, straight_free
+from btplan.worlds.pybullet.assembly import motions
+from btplan.worlds.pybullet.assembly.geometry import down
 
 ROOT = Path(__file__).resolve().parents[3]
 YUMI = ROOT / "domains" / "yumi.bt"
@@ -183,3 +186,46 @@ def test_a_board_knocked_to_the_other_side_is_fetched_by_the_other_arm(
     result = act(phone(tmp_path), opened, scene_with(tmp_path, knock("left_side")))
     assert assembled(result), result.reason
     assert "Insert(board, left, chassis, chassis)" in executed(result)
+
+
+@pytest.mark.slow
+def test_an_arm_move_blocked_by_the_other_arm_is_planned_around_it_with_ompl(
+        tmp_path: Path, opened: list[AssemblyWorld]) -> None:
+    world = open_world(phone(tmp_path))
+    assert isinstance(world, AssemblyWorld)
+    opened.append(world)
+    state, timings = world.state, Timings()
+    left, right = state.arm("left"), state.arm("right")
+    reaching_over = right.solve_ik((-0.15, 0.0, 0.25), down(0.0))  # into the left arm's half
+    goal = left.solve_ik((-0.2, 0.25, 0.08), down(0.0))
+    assert reaching_over is not None and goal is not None
+    right.set_arm(reaching_over)
+    right.command(reaching_over)
+    bodies = motions.obstacles(state, "left")
+
+    def free(q: tuple[float, ...]) -> bool:
+        return not left.touches(q, bodies, state.sim.table)
+
+    assert not straight_free(left.joints(), goal, free)
+    path = motions.plan(state, timings, "left", goal)
+    assert path is not None and len(path) > 2 and timings.ompl_solves == 1
+    assert all(straight_free(a, b, free) for a, b in zip(path, path[1:]))
+    touched = False
+    for _ in motions.follow(state, "left", path):
+        state.sim.step()
+        touched |= bool(state.sim.p.getContactPoints(left.body, right.body,
+                                                     physicsClientId=state.sim.client))
+    assert not touched
+    assert max(abs(a - b) for a, b in zip(left.joints(), goal)) < 0.06
+
+
+@pytest.mark.slow
+def test_the_default_run_hands_the_chassis_over_and_assembles_the_phone(tmp_path: Path) -> None:
+    plan = tmp_path / "plan.txt"
+    result = CliRunner().invoke(app, ["run", str(YUMI), "--sim", "pybullet", "--quiet",
+                                      "--plan-out", str(plan)])
+    assert result.exit_code == 0, result.output
+    lines = plan.read_text().splitlines()
+    assert [line for line in lines if line.startswith("(handover")] == [
+        "(handover chassis left right toward away)"]
+    assert sum(line.startswith("(insert") for line in lines) == 6

@@ -27,6 +27,7 @@ Motion = Generator[None, None, bool]
 ARM_BUDGET = 1.0       # s OMPL may take for one arm motion
 BACK_OFF = 0.09        # m the hand moves back along its fingers before it goes home
 SLOW = 0.5             # the joint speed of short moves near parts, as a fraction
+LOW = 0.25             # m: an empty hand lower than this backs off before it moves on
 
 
 def obstacles(state: AssemblyState, arm: str, *handled: str) -> list[int]:
@@ -146,15 +147,26 @@ def at_home(state: AssemblyState, arm: str) -> bool:
     return max(abs(x - y) for x, y in zip(state.arm(arm).joints(), HOME)) < 3 * AT
 
 
+def back_off(state: AssemblyState, timings: Timings, arm: str) -> Motion:
+    """An empty hand low among the parts moves back along its fingers, out of them."""
+    panda = state.arm(arm)
+    tip, turn = panda.tip()
+    if panda.gripped is not None or tip[2] > LOW:
+        return True
+    a = panda.approach()
+    back = (tip[0] - BACK_OFF * a[0], tip[1] - BACK_OFF * a[1], tip[2] - BACK_OFF * a[2])
+    return (yield from slide(state, timings, arm, back, turn, 2))
+
+
 def go_home(state: AssemblyState, timings: Timings, arm: str) -> Motion:
-    """Back off along the fingers (out of whatever they were around), then go home."""
+    """Back off (out of whatever the fingers were around), then go home."""
     if at_home(state, arm):
         return True
     panda = state.arm(arm)
-    tip, turn = panda.tip()
-    a = panda.approach()
-    back = (tip[0] - BACK_OFF * a[0], tip[1] - BACK_OFF * a[1], tip[2] - BACK_OFF * a[2])
-    if state.sim.arms[arm].gripped is None:
+    if panda.gripped is None:
+        a = panda.approach()
+        tip, turn = panda.tip()
+        back = (tip[0] - BACK_OFF * a[0], tip[1] - BACK_OFF * a[1], tip[2] - BACK_OFF * a[2])
         yield from slide(state, timings, arm, back, turn, 2)
     path = plan(state, timings, arm, HOME)
     if path is None:  # last resort: straight, as the mobile arm folds itself
@@ -168,5 +180,5 @@ def pause(seconds: float) -> Motion:
     return True
 
 
-__all__ = ["CHECK_STEP", "Motion", "close_on", "follow", "go_home", "open_hand", "pause",
+__all__ = ["CHECK_STEP", "Motion", "back_off", "close_on", "follow", "go_home", "open_hand", "pause",
            "plan", "reach", "slide", "solve"]

@@ -90,10 +90,13 @@ def let_go_unless_held(state: AssemblyState) -> None:
 
 def clear_others(state: AssemblyState, timings: Timings, *acting: str
                  ) -> Generator[None, None, None]:
-    """Send every other arm with an empty hand home, out of the shared space."""
+    """Send every other arm with an empty hand home, out of the shared space; an acting
+    arm with an empty hand down among the parts backs off first."""
     for name in state.arm_names:
         if name not in acting and state.arm(name).gripped is None:
             yield from mv.go_home(state, timings, name)
+    for name in acting:
+        yield from mv.back_off(state, timings, name)
 
 
 def grasp_point(state: AssemblyState, arm: str, part: str) -> Vec:
