@@ -136,9 +136,9 @@ class AssemblyPhysics:
     def snapshot(self, width: int = 640, height: int = 400) -> tuple[int, int, bytes]:
         """An RGB picture of the table from the front, both arms in view (software renderer)."""
         p = self.p
-        view = p.computeViewMatrix([0.0, -1.45, 0.85], [0.0, 0.0, 0.08], [0, 0, 1],
+        view = p.computeViewMatrix([0.0, -1.05, 0.72], [0.0, 0.05, 0.24], [0, 0, 1],
                                    physicsClientId=self.client)
-        proj = p.computeProjectionMatrixFOV(50, width / height, 0.1, 10.0,
+        proj = p.computeProjectionMatrixFOV(62, width / height, 0.1, 10.0,
                                             physicsClientId=self.client)
         _, _, rgba, _, _ = p.getCameraImage(width, height, view, proj,
                                             renderer=p.ER_TINY_RENDERER,
