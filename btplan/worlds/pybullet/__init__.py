@@ -12,6 +12,8 @@ from pathlib import Path
 from btplan import shipped
 from btplan.errors import WorldError
 from btplan.model import Task
+from btplan.worlds.pybullet.assembly.world import AssemblyWorld
+from btplan.worlds.pybullet.record import Recorder
 from btplan.worlds.pybullet.world import PyBulletWorld
 
 SCENES = shipped.scenes()
@@ -24,7 +26,8 @@ def default_scene(task: Task) -> Path:
 
 
 def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = False,
-               record: str | None = None, verbose: bool = False) -> PyBulletWorld:
+               record: str | None = None, verbose: bool = False
+               ) -> PyBulletWorld | AssemblyWorld:
     """Build the PyBullet world of `task` from a scene file (by default the domain's own).
 
     Raises WorldError when the simulation extra is missing or the scene does not fit
@@ -48,6 +51,10 @@ def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = 
     path = Path(scene) if scene is not None else default_scene(task)
     if scene is None and not path.exists():
         raise WorldError(f"no scene for domain {task.domain.name!r}: pass one with --scenario")
+    from btplan.worlds.pybullet.assembly.scene import is_assembly_scene
+
+    if is_assembly_scene(path):  # the two-arm scene of domains/yumi.bt
+        return _open_assembly(task, path, seed, gui, recorder, verbose)
     loaded = load_scene(path)
     arity = {p.name: p.arity for p in task.domain.predicates}
     agents = scene_agents(loaded.events, str(path), arity)
@@ -58,4 +65,15 @@ def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = 
     return world
 
 
-__all__ = ["PyBulletWorld", "default_scene", "open_world"]
+def _open_assembly(task: Task, path: Path, seed: int, gui: bool, recorder: Recorder | None,
+                   verbose: bool) -> AssemblyWorld:
+    from btplan.worlds.pybullet.assembly.scene import load_assembly_scene
+
+    world = AssemblyWorld(task, load_assembly_scene(path), seed=seed, gui=gui, verbose=verbose)
+    if recorder is not None:
+        world.on_frame = recorder
+        world.save_recording = recorder.save
+    return world
+
+
+__all__ = ["AssemblyWorld", "PyBulletWorld", "default_scene", "open_world"]

@@ -15,11 +15,21 @@ import os
 import tempfile
 from collections.abc import Generator
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 from btplan.errors import WorldError
 from btplan.io import output_mode, write_bytes_atomic  # a normal file's mode, renamed whole
-from btplan.worlds.pybullet.state import SceneState
+
+
+class Camera(Protocol):
+    def snapshot(self, width: int, height: int) -> tuple[int, int, bytes]: ...
+
+
+class Scene(Protocol):
+    """What the recorder films: any scene state whose simulation can take a picture."""
+
+    @property
+    def sim(self) -> Camera: ...
 
 FORMATS = (".gif", ".mp4")
 
@@ -41,7 +51,7 @@ class Recorder:
         self._temporary: str | None = None
         self._ticks = 0
 
-    def __call__(self, world: SceneState, label: str) -> None:
+    def __call__(self, world: Scene, label: str) -> None:
         self._ticks += 1
         if self._ticks % self.every != 1 and self.every != 1:
             return
@@ -98,7 +108,7 @@ def _palette() -> Any:
     return Image.Palette.ADAPTIVE
 
 
-def frame(world: SceneState, label: str, width: int = 640, height: int = 400) -> Any:
+def frame(world: Scene, label: str, width: int = 640, height: int = 400) -> Any:
     """One labelled RGB picture of the robot and what is around it, as a pillow image."""
     from PIL import Image, ImageDraw
 
