@@ -14,7 +14,7 @@ import time
 from collections.abc import Generator, Sequence
 
 from btplan.worlds.pybullet import motion
-from btplan.worlds.pybullet.arm import AT, CHECK_STEP, JOINT_SPEED, SETTLE, Timings, straight_free
+from btplan.worlds.pybullet.arm import AT, JOINT_SPEED, SETTLE, Timings, straight_free
 from btplan.worlds.pybullet.assembly.geometry import Quat, Vec
 from btplan.worlds.pybullet.assembly.panda import HOME, Q
 from btplan.worlds.pybullet.assembly.state import AssemblyState
@@ -187,6 +187,3 @@ def pause(seconds: float) -> Motion:
         yield
     return True
 
-
-__all__ = ["CHECK_STEP", "Motion", "back_off", "close_on", "follow", "go_home", "open_hand", "pause",
-           "plan", "reach", "slide", "solve"]
