@@ -246,3 +246,25 @@ def test_the_default_run_hands_the_chassis_over_and_assembles_the_phone(tmp_path
     assert [line for line in lines if line.startswith("(handover")] == [
         "(handover chassis left right toward away)"]
     assert sum(line.startswith("(insert") for line in lines) == 6
+
+
+def test_a_broken_assembly_scene_is_bad_input_with_its_location(tmp_path: Path) -> None:
+    scene = tmp_path / "yumi.toml"
+    scene.write_text(SCENE.read_text().replace("size = [0.12, 0.045, 0.015]",
+                                               "size = [0.12, 0.2, 0.015]"))
+    result = CliRunner().invoke(app, ["run", str(YUMI), "--sim", "pybullet", "--quiet",
+                                      "--scenario", str(scene)])
+    assert result.exit_code == 2
+    line = 1 + SCENE.read_text().split("\n").index("size = [0.12, 0.045, 0.015]")
+    assert f"{scene}:{line}:" in result.output and "the grippers open 8 cm" in result.output
+    assert "Traceback" not in result.output
+
+
+def test_a_part_of_the_problem_missing_from_the_scene_is_named(tmp_path: Path) -> None:
+    scene = tmp_path / "yumi.toml"
+    scene.write_text(SCENE.read_text().replace('name = "screws"', 'name = "bolts"'))
+    result = CliRunner().invoke(app, ["run", str(YUMI), "--sim", "pybullet", "--quiet",
+                                      "--scenario", str(scene)])
+    assert result.exit_code == 2
+    assert "'screws' is a part of the problem but not in the scene" in result.output
+    assert "Traceback" not in result.output
