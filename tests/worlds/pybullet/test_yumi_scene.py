@@ -62,9 +62,11 @@ to = "middle"
 """
 
 
-def phone(tmp_path: Path, chassis: str = "up", board: str = "up", cover: str = "up") -> Task:
+def phone(tmp_path: Path, chassis: str = "up", board: str = "up", cover: str = "up",
+          left_mounts: bool = True) -> Task:
     path = tmp_path / "three.bt"
-    path.write_text(PROBLEM.format(chassis=chassis, board=board, cover=cover))
+    text = PROBLEM.format(chassis=chassis, board=board, cover=cover)
+    path.write_text(text if left_mounts else text.replace("mounts(left), ", ""))
     return load(str(YUMI), str(path), problem="three")
 
 
@@ -135,6 +137,21 @@ def test_two_parts_lying_opening_down_are_each_handed_over(
                                      "Handover(board, right, left, toward, away)",
                                      "Insert(board, left, chassis, chassis)"]
     assert len(result.executed) == 2 * len(PARTS) + 2
+
+
+@pytest.mark.slow
+def test_with_only_the_right_arm_at_the_fixture_the_left_puts_parts_down_in_the_middle(
+        tmp_path: Path, opened: list[AssemblyWorld]) -> None:
+    result = act(phone(tmp_path, cover="down", left_mounts=False), opened)
+    assert assembled(result), result.reason
+    assert executed(result)[:4] == ["Pick(chassis, left, left_side, up, away)",
+                                    "Place(chassis, left, middle, up, away)",
+                                    "Pick(chassis, right, middle, up, away)",
+                                    "Insert(chassis, right, base, base)"]
+    assert executed(result)[-3:] == ["Pick(cover, left, left_side, down, toward)",
+                                     "Handover(cover, left, right, toward, away)",
+                                     "Insert(cover, right, board, board)"]
+    assert result.world.halted == [] and result.world.failed == []
 
 
 @pytest.mark.slow
@@ -229,3 +246,25 @@ def test_the_default_run_hands_the_chassis_over_and_assembles_the_phone(tmp_path
     assert [line for line in lines if line.startswith("(handover")] == [
         "(handover chassis left right toward away)"]
     assert sum(line.startswith("(insert") for line in lines) == 6
+
+
+def test_a_broken_assembly_scene_is_bad_input_with_its_location(tmp_path: Path) -> None:
+    scene = tmp_path / "yumi.toml"
+    scene.write_text(SCENE.read_text().replace("size = [0.12, 0.045, 0.015]",
+                                               "size = [0.12, 0.2, 0.015]"))
+    result = CliRunner().invoke(app, ["run", str(YUMI), "--sim", "pybullet", "--quiet",
+                                      "--scenario", str(scene)])
+    assert result.exit_code == 2
+    line = 1 + SCENE.read_text().split("\n").index("size = [0.12, 0.045, 0.015]")
+    assert f"{scene}:{line}:" in result.output and "the grippers open 8 cm" in result.output
+    assert "Traceback" not in result.output
+
+
+def test_a_part_of_the_problem_missing_from_the_scene_is_named(tmp_path: Path) -> None:
+    scene = tmp_path / "yumi.toml"
+    scene.write_text(SCENE.read_text().replace('name = "screws"', 'name = "bolts"'))
+    result = CliRunner().invoke(app, ["run", str(YUMI), "--sim", "pybullet", "--quiet",
+                                      "--scenario", str(scene)])
+    assert result.exit_code == 2
+    assert "'screws' is a part of the problem but not in the scene" in result.output
+    assert "Traceback" not in result.output

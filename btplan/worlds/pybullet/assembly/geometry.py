@@ -43,6 +43,10 @@ def multiply(a: Quat, b: Quat) -> Quat:
             aw * bw - ax * bx - ay * by - az * bz)
 
 
+def inverse(q: Quat) -> Quat:
+    return (-q[0], -q[1], -q[2], q[3])
+
+
 def rotate(q: Quat, v: Vec) -> Vec:
     ex, ey, ez = axis_x(q), axis_y(q), axis_z(q)
     return (ex[0] * v[0] + ey[0] * v[1] + ez[0] * v[2],

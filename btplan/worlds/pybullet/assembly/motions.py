@@ -14,7 +14,7 @@ import time
 from collections.abc import Generator, Sequence
 
 from btplan.worlds.pybullet import motion
-from btplan.worlds.pybullet.arm import AT, CHECK_STEP, JOINT_SPEED, SETTLE, Timings, straight_free
+from btplan.worlds.pybullet.arm import AT, JOINT_SPEED, SETTLE, Timings, straight_free
 from btplan.worlds.pybullet.assembly.geometry import Quat, Vec
 from btplan.worlds.pybullet.assembly.panda import HOME, Q
 from btplan.worlds.pybullet.assembly.state import AssemblyState
@@ -27,7 +27,8 @@ Motion = Generator[None, None, bool]
 ARM_BUDGET = 1.0       # s OMPL may take for one arm motion
 BACK_OFF = 0.09        # m the hand moves back along its fingers before it goes home
 SLOW = 0.5             # the joint speed of short moves near parts, as a fraction
-LOW = 0.25             # m: an empty hand lower than this backs off before it moves on
+LOW = 0.25             # m: an empty hand lower than this backs off before the arm moves on
+LIFT = 0.12            # m: a part held lower than this is lifted first
 
 
 def obstacles(state: AssemblyState, arm: str, *handled: str) -> list[int]:
@@ -40,10 +41,10 @@ def obstacles(state: AssemblyState, arm: str, *handled: str) -> list[int]:
 
 
 def solve(state: AssemblyState, timings: Timings, arm: str, target: Vec,
-          orientation: Quat) -> Q | None:
+          orientation: Quat, near: Q | None = None) -> Q | None:
     began = time.perf_counter()
     try:
-        return state.arm(arm).solve_ik(target, orientation)
+        return state.arm(arm).solve_ik(target, orientation, near)
     finally:
         timings.ik += time.perf_counter() - began
 
@@ -102,14 +103,15 @@ def reach(state: AssemblyState, timings: Timings, arm: str, target: Vec, orienta
 
 
 def slide(state: AssemblyState, timings: Timings, arm: str, target: Vec, orientation: Quat,
-          pieces: int = 4) -> Motion:
+          pieces: int = 6) -> Motion:
     """A short straight move of the tip (down onto a part, up off it), slowly, by IK
-    waypoints; not checked against the part it grasps or sets down, on purpose."""
+    waypoints each near the one before; not checked against the part it grasps or sets
+    down, on purpose."""
     start, _ = state.arm(arm).tip()
     path = [state.arm(arm).joints()]
     for k in range(1, pieces + 1):
         point = tuple(s + (t - s) * k / pieces for s, t in zip(start, target))
-        q = solve(state, timings, arm, point, orientation)  # type: ignore[arg-type]
+        q = solve(state, timings, arm, point, orientation, path[-1])  # type: ignore[arg-type]
         if q is None:
             return False
         path.append(q)
@@ -148,10 +150,16 @@ def at_home(state: AssemblyState, arm: str) -> bool:
 
 
 def back_off(state: AssemblyState, timings: Timings, arm: str) -> Motion:
-    """An empty hand low among the parts moves back along its fingers, out of them."""
+    """A hand low among the parts gets clear before the arm moves on: an empty one backs
+    off along its fingers, one holding a part lifts it straight up (a joint-space move
+    from down there could drag the part over the table)."""
     panda = state.arm(arm)
     tip, turn = panda.tip()
-    if panda.gripped is not None or tip[2] > LOW:
+    if panda.gripped is not None:
+        if tip[2] >= LIFT:
+            return True
+        return (yield from slide(state, timings, arm, (tip[0], tip[1], LIFT), turn))
+    if tip[2] > LOW:
         return True
     a = panda.approach()
     back = (tip[0] - BACK_OFF * a[0], tip[1] - BACK_OFF * a[1], tip[2] - BACK_OFF * a[2])
@@ -179,6 +187,3 @@ def pause(seconds: float) -> Motion:
         yield
     return True
 
-
-__all__ = ["CHECK_STEP", "Motion", "back_off", "close_on", "follow", "go_home", "open_hand", "pause",
-           "plan", "reach", "slide", "solve"]

@@ -34,6 +34,9 @@ HOME = (0.0, -0.7, 0.0, -2.5, 0.0, 1.8, 0.785)
 """Out of the way: the hand raised close to the arm's own base."""
 REST = (0.0, -0.2, 0.0, -2.2, 0.0, 2.0, 0.785)
 """The null-space rest pose of IK: elbow up, the hand in front of the base."""
+SEEDS = ((0.0, -0.5, 0.0, -2.6, 0.0, 1.0, 2.356), (0.0, -0.5, 0.0, -2.6, 0.0, 1.0, -0.785))
+"""More starts for IK: the wrist tilted back and turned either way, for a hand held out
+sideways that PyBullet's IK does not find from the rest pose (joint limits)."""
 IK_TOLERANCE = 0.008     # metres between the IK target and where the tip ends up
 IK_TURN = 0.1            # radians between the asked and the reached hand orientation
 
@@ -101,34 +104,42 @@ class Panda:
         matrix = self.p.getMatrixFromQuaternion(self.tip()[1])
         return (float(matrix[2]), float(matrix[5]), float(matrix[8]))
 
-    def solve_ik(self, target: Vec, orientation: Quat) -> Q | None:
+    def solve_ik(self, target: Vec, orientation: Quat, near: Q | None = None) -> Q | None:
         """Joints that put the tip at `target` with the hand turned as `orientation`.
 
-        Null-space IK (limits, the rest pose) keeps the elbow up; forward kinematics must
-        confirm the answer, or it is None (out of reach).
+        Null-space IK (limits, a rest pose) keeps the elbow up; forward kinematics must
+        confirm the answer, or it is None (out of reach). `near` (for short straight moves)
+        starts from and stays close to those joints instead of the rest pose, so that a
+        joint-space interpolation between two answers keeps the tip on its line.
         """
-        p = self.p
         saved = self.joints()
-        ranges = [u - lo for lo, u in zip(LOWER, UPPER)]
         try:
-            self.set_arm(REST)
-            solution: Q | None = None
-            for _ in range(3):  # a second and third start from the last answer
-                q = p.calculateInverseKinematics(
-                    self.body, TIP, list(target), list(orientation),
-                    lowerLimits=[*LOWER, 0.0, 0.0], upperLimits=[*UPPER, OPEN, OPEN],
-                    jointRanges=[*ranges, OPEN, OPEN], restPoses=[*REST, OPEN, OPEN],
-                    maxNumIterations=100, residualThreshold=1e-5, physicsClientId=self.client)
-                solution = tuple(min(max(float(v), lo), u)
-                                 for v, lo, u in zip(q[:7], LOWER, UPPER))
-                self.set_arm(solution)
-                where, turn = self.tip()
-                if math.dist(where, target) <= IK_TOLERANCE and \
-                        _angle(turn, orientation) <= IK_TURN:
-                    return solution
+            if near is not None:
+                return self._ik(target, orientation, near)
+            # From the elbow-up rest pose first, then from where the arm is, then SEEDS.
+            for rest in (REST, saved, *SEEDS):
+                found = self._ik(target, orientation, rest)
+                if found is not None:
+                    return found
             return None
         finally:
             self.set_arm(saved)
+
+    def _ik(self, target: Vec, orientation: Quat, rest: Q) -> Q | None:
+        ranges = [u - lo for lo, u in zip(LOWER, UPPER)]
+        self.set_arm(rest)
+        for _ in range(3):  # a second and third start from the last answer
+            q = self.p.calculateInverseKinematics(
+                self.body, TIP, list(target), list(orientation),
+                lowerLimits=[*LOWER, 0.0, 0.0], upperLimits=[*UPPER, OPEN, OPEN],
+                jointRanges=[*ranges, OPEN, OPEN], restPoses=[*rest, OPEN, OPEN],
+                maxNumIterations=100, residualThreshold=1e-5, physicsClientId=self.client)
+            solution = tuple(min(max(float(v), lo), u) for v, lo, u in zip(q[:7], LOWER, UPPER))
+            self.set_arm(solution)
+            where, turn = self.tip()
+            if math.dist(where, target) <= IK_TOLERANCE and _angle(turn, orientation) <= IK_TURN:
+                return solution
+        return None
 
     def touches(self, q: Sequence[float], bodies: Sequence[int], table: int) -> bool:
         """Whether the arm at `q` touches one of `bodies`, or the table with more than its foot."""

@@ -9,6 +9,7 @@ says what things look like and where the named places are.
 from __future__ import annotations
 
 import math
+import re
 import tomllib
 from dataclasses import dataclass
 from difflib import get_close_matches
@@ -131,7 +132,12 @@ def load_assembly_scene(path: str | Path) -> AssemblyScene:
     try:
         data = tomllib.loads(text)
     except (tomllib.TOMLDecodeError, ValueError) as error:
-        raise InputError(f"bad TOML: {shorten(str(error), 200)}", Span(where, 1, 1)) from None
+        found = re.search(r"\(at line (\d+), column (\d+)\)", str(error))
+        line, column = (int(found.group(1)), int(found.group(2))) if found else (1, 1)
+        lines = text.split("\n")
+        raise InputError(f"bad TOML: {shorten(str(error), 200)}", Span(where, line, column),
+                         source_line=lines[line - 1] if 0 < line <= len(lines) else None
+                         ) from None
     return _Reader(where, text).scene(data)
 
 
@@ -139,8 +145,12 @@ class _Reader:
     def __init__(self, path: str, text: str) -> None:
         self.path, self.lines = path, text.split("\n")
 
-    def fail(self, message: str, key: str, hint: str | None = None) -> InputError:
-        for number, line in enumerate(self.lines, 1):
+    def fail(self, message: str, key: str, hint: str | None = None,
+             table: str | None = None) -> InputError:
+        """The error at the first line with `key`, after the line naming `table` if given."""
+        start = next((n for n, line in enumerate(self.lines) if table is not None
+                      and f'"{table}"' in line and "name" in line), 0)
+        for number, line in enumerate(self.lines[start:], start + 1):
             column = line.find(key) if key else -1
             if column >= 0:
                 return InputError(message, Span(self.path, number, column + 1), hint, line)
@@ -163,17 +173,20 @@ class _Reader:
             raise self.fail(f"write [[{kind}]] for each {kind} (at most {MAX_SCENE_ITEMS})", kind)
         return [self.known(t, kind) for t in items]
 
-    def numbers(self, value: object, n: int, key: str) -> tuple[float, ...]:
+    def numbers(self, value: object, n: int, key: str, table: str | None = None
+                ) -> tuple[float, ...]:
         if not (isinstance(value, list) and len(value) == n and all(
                 isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
                 and abs(v) <= MAX_SCENE_MAGNITUDE for v in value)):
-            raise self.fail(f"'{key}' must be a list of {n} numbers", key)
+            raise self.fail(f"'{key}' must be a list of {n} numbers", key, table=table)
         return tuple(float(v) for v in value)
 
     def vec(self, table: dict[str, Any], key: str, default: list[float] | None = None) -> Vec:
+        name = table.get("name")
+        where = name if isinstance(name, str) else None
         if key not in table and default is None:
-            raise self.fail(f"'{key}' is missing", f"[{key}]" if key == "assembly" else key)
-        x, y, z = self.numbers(table.get(key, default), 3, key)
+            raise self.fail(f"'{key}' is missing", "name", table=where)
+        x, y, z = self.numbers(table.get(key, default), 3, key, where)
         return (x, y, z)
 
     def point(self, table: dict[str, Any], key: str) -> Point:
@@ -220,13 +233,13 @@ class _Reader:
         size = self.vec(t, "size")
         if not (0.06 <= size[0] <= 0.3 and 0.01 <= size[1] <= 0.07 and 0.005 <= size[2] <= 0.1):
             raise self.fail("a part's size must be [0.06..0.3, 0.01..0.07, 0.005..0.1] metres",
-                            "size", "the grippers open 8 cm across the width")
+                            "size", "the grippers open 8 cm across the width", t.get("name"))
         return PartSpec(self.name(t, "part"), size, self.vec(t, "color", [0.6, 0.6, 0.6]))
 
     def place(self, t: dict[str, Any]) -> Place:
         low, high = self.point(t, "min"), self.point(t, "max")
         if low[0] >= high[0] or low[1] >= high[1]:
-            raise self.fail("a place's min must be below its max", "min")
+            raise self.fail("a place's min must be below its max", "min", table=t.get("name"))
         return Place(self.name(t, "place"), low, high, self.vec(t, "color", [0.8, 0.8, 0.7]),
                      bool(t.get("below", False)))
 

@@ -19,7 +19,9 @@ from btplan.worlds.pybullet.assembly import motions as mv
 from btplan.worlds.pybullet.assembly.geometry import (
     axis_x,
     axis_y,
+    cross,
     down,
+    inverse,
     multiply,
     quat_from_axes,
     rotate,
@@ -90,8 +92,12 @@ def let_go_unless_held(state: AssemblyState) -> None:
 
 def clear_others(state: AssemblyState, timings: Timings, *acting: str
                  ) -> Generator[None, None, None]:
-    """Send every other arm with an empty hand home, out of the shared space; an acting
-    arm with an empty hand down among the parts backs off first."""
+    """Let go of parts set down but still gripped (Place ends as soon as the part lies
+    there), send every other arm with an empty hand home, out of the shared space; an
+    acting arm down among the parts gets clear of them first."""
+    for name in state.arm_names:
+        if state.arm(name).gripped is not None and state.in_hand(name) is None:
+            yield from mv.open_hand(state, name)
     for name in state.arm_names:
         if name not in acting and state.arm(name).gripped is None:
             yield from mv.go_home(state, timings, name)
@@ -201,37 +207,36 @@ def handover(state: AssemblyState, timings: Timings, part: str, giver: str,
     """The giver holds the part out, fingers toward the taker; the taker takes its other
     end from the opposite side, and the giver lets go: the part turns over relative to
     the gripper that holds it."""
-    yield from mv.go_home(state, timings, taker)
+    yield from clear_others(state, timings, giver)
     g, t = state.arm(giver), state.arm(taker)
     base_g, base_t = g.base, t.base
     dx, dy = base_t[0] - base_g[0], base_t[1] - base_g[1]
     norm = math.hypot(dx, dy)
     d = (dx / norm, dy / norm, 0.0)
-    _, hand = g.tip()
-    pitch = turn_between(g.approach(), d)
-    options = [(state.scene.handover, multiply(turn, hand)) for turn in rolled(pitch, d, 4)]
-    chosen = solvable(state, timings, giver, options)
-    if chosen is None or not (yield from mv.reach(state, timings, giver, *chosen, part)):
+    tip, hand = g.tip()
+    center, turn = state.pose(part)
+    in_hand = (rotate(inverse(hand), sub(center, tip)), multiply(inverse(hand), turn))
+    out = state.scene.handover
+    # The giver's hand may roll by quarter turns about the handover direction; the first
+    # roll that both arms can take (the taker's grasp predicted from the part's pose in
+    # the giver's hand) is used.
+    chosen = None
+    for roll in rolled(turn_between(g.approach(), d), d, 4):
+        held = multiply(roll, hand)
+        if mv.solve(state, timings, giver, out, held) is None:
+            continue
+        seen = (add(out, rotate(held, in_hand[0])), multiply(held, in_hand[1]))
+        if solvable(state, timings, taker, take_options(state, part, seen, out, d)):
+            chosen = held
+            break
+    if chosen is None or not (yield from mv.reach(state, timings, giver, out, chosen, part)):
         return FAILURE
     yield from mv.pause(0.2)
-    held_at, _ = g.tip()
-    center, turn = state.pose(part)
-    u = axis_x(turn)
-    if sum((c - h) * x for c, h, x in zip(center, held_at, u)) < 0:
-        u = (-u[0], -u[1], -u[2])  # toward the end the giver does not hold
-    s = state.size[part][0] / 2 - GRIP_IN
-    grip = (center[0] + s * u[0], center[1] + s * u[1], center[2] + s * u[2])
-    toward = (-d[0], -d[1], -d[2])
-    y = axis_y(turn)
-    takes = []
-    for side in (y, (-y[0], -y[1], -y[2])):
-        x = (side[1] * toward[2] - side[2] * toward[1], side[2] * toward[0] - side[0] * toward[2],
-             side[0] * toward[1] - side[1] * toward[0])
-        takes.append((grip, quat_from_axes(x, side, toward)))
-    taking = solvable(state, timings, taker, takes)
+    taking = solvable(state, timings, taker,
+                      take_options(state, part, state.pose(part), g.tip()[0], d))
     if taking is None:
         return FAILURE
-    take = taking[1]
+    grip, take = taking
     before = (grip[0] + ABOVE * d[0], grip[1] + ABOVE * d[1], grip[2] + ABOVE * d[2])
     if not (yield from mv.reach(state, timings, taker, before, take, part)):
         return FAILURE
@@ -241,3 +246,27 @@ def handover(state: AssemblyState, timings: Timings, part: str, giver: str,
         return FAILURE
     yield from mv.open_hand(state, giver)
     return SUCCESS
+
+
+def take_options(state: AssemblyState, part: str, pose: tuple[Vec, Quat], held_at: Vec,
+                 d: Vec) -> list[tuple[Vec, Quat]]:
+    """Where and how the taker grips a part held out at `pose`: the end the giver does not
+    hold, fingers pointing back at the giver (along -d), closing across the part."""
+    center, turn = pose
+    u = axis_x(turn)
+    if sum((c - h) * x for c, h, x in zip(center, held_at, u)) < 0:
+        u = (-u[0], -u[1], -u[2])
+    s = state.size[part][0] / 2 - GRIP_IN
+    grip = add(center, (s * u[0], s * u[1], s * u[2]))
+    toward = (-d[0], -d[1], -d[2])
+    y = axis_y(turn)
+    return [(grip, quat_from_axes(cross(side, toward), side, toward))
+            for side in (y, (-y[0], -y[1], -y[2]))]
+
+
+def add(a: Vec, b: Vec) -> Vec:
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def sub(a: Vec, b: Vec) -> Vec:
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
