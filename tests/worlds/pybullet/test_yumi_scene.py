@@ -268,3 +268,17 @@ def test_a_part_of_the_problem_missing_from_the_scene_is_named(tmp_path: Path) -
     assert result.exit_code == 2
     assert "'screws' is a part of the problem but not in the scene" in result.output
     assert "Traceback" not in result.output
+
+
+@pytest.mark.slow
+def test_record_films_both_arms_from_the_front(tmp_path: Path) -> None:
+    movie = tmp_path / "start.gif"
+    result = CliRunner().invoke(app, ["run", str(YUMI), "--sim", "pybullet", "--quiet",
+                                      "--record", str(movie), "--max-ticks", "12"])
+    assert result.exit_code == 1  # the phone is not built in 12 ticks; the movie is still saved
+    from PIL import Image
+
+    with Image.open(movie) as gif:
+        # Ticks 1 to 4 only grow the tree; then 8 ticks of Pick, one frame every 2.
+        assert gif.size == (640, 400) and gif.n_frames == 4
+        assert len(gif.convert("RGB").getcolors(1 << 16) or ()) > 50  # a picture, not a blank

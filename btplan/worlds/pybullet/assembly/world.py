@@ -20,6 +20,7 @@ from btplan.worlds.pybullet.assembly.agents import AssemblyAgents, assembly_agen
 from btplan.worlds.pybullet.assembly.conditions import AssemblyConditions, Key
 from btplan.worlds.pybullet.assembly.scene import AssemblyScene
 from btplan.worlds.pybullet.assembly.state import AssemblyState
+from btplan.worlds.pybullet.sim import HZ
 
 Frame = Callable[[AssemblyState, str], None]
 
@@ -48,7 +49,7 @@ class AssemblyWorld:
         self.settle(1.0)  # parts laid out a millimetre above the table come to rest
 
     def settle(self, seconds: float) -> None:
-        for _ in range(int(seconds * 240)):
+        for _ in range(int(seconds * HZ)):
             self.state.sim.step()
 
     @property
