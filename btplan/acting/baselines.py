@@ -35,7 +35,6 @@ from btplan.model import (
     GroundLiteral,
     Task,
     instantiate,
-    matches,
 )
 from btplan.worlds.agents import Agent, act_all
 
@@ -73,10 +72,9 @@ class Grounding:
 
     `where` constraints on predicates that actions or agents may change become
     preconditions; the others filter the groundings. A negative precondition becomes a
-    fact of its own (fact_of): an action that makes an instance of it false makes it
-    true, one that makes an instance true makes it false. That is exact for a plain
-    literal, and for a wildcard (`not blocks(_, t)`) while at most one instance holds,
-    as in Example 2; a plan it gets wrong fails when run, and the baseline replans.
+    fact of its own (fact_of), made true by actions that delete its atom and false by
+    actions that add it; a wildcard one (`not blocks(_, t)`) becomes one such fact per
+    object the wildcard can stand for, all needed: exact STRIPS.
     """
 
     def __init__(self, task: Task) -> None:
@@ -112,16 +110,17 @@ class Grounding:
         universe = set(state).union(*(a.add for a in self.actions))
         universe.update(p.atom for a in self.actions for p in a.preconditions if p.positive)
         universe.update(g.atom for g in task.goal_literals)
-        self.negatives = sorted({p for a in self.actions for p in a.preconditions
-                                 if not p.positive})
+        self.negatives = sorted({n for a in self.actions for p in a.preconditions
+                                 if not p.positive for n in instances(p, task)})
         plain = frozenset(universe)
         universe.update(fact_of(n) for n in self.negatives)
         self.universe = frozenset(universe)
         self.by_name = {str(a): a for a in self.actions}
         self.operators = [
-            Operator(str(a), frozenset(str(fact_of(p)) for p in a.preconditions),
+            Operator(str(a), frozenset(str(fact_of(n)) for p in a.preconditions
+                                       for n in instances(p, task)),
                      frozenset(str(x) for x in a.add)
-                     | {str(fact_of(n)) for n in self.negatives if _undoes(a, n, plain)},
+                     | {str(fact_of(n)) for n in self.negatives if _undoes(a, n)},
                      frozenset(str(x) for x in plain if a.deletes(x))
                      | {str(fact_of(n)) for n in self.negatives if _breaks(a, n)})
             for a in self.actions
@@ -148,16 +147,26 @@ class Grounding:
         return None if found is None else [self.by_name[op.name] for op in found]
 
 
-def _undoes(action: GroundAction, negative: GroundLiteral, universe: frozenset[Atom]) -> bool:
-    """Whether `action` makes some instance of the negated atom false."""
-    if WILDCARD not in negative.atom.args:
-        return action.deletes(negative.atom)
-    return any(action.deletes(x) for x in universe if matches(negative.atom, x))
+def instances(literal: GroundLiteral, task: Task) -> list[GroundLiteral]:
+    """A precondition as plain literals: `not blocks(_, t)` is `not blocks(o, t)` for
+    every object o the wildcard can stand for (the predicate's parameter type)."""
+    if literal.positive or WILDCARD not in literal.atom.args:
+        return [literal]
+    declared = task.domain.predicate_map[literal.atom.predicate].parameters
+    choices = [task.objects_of(p.type) if a == WILDCARD else (a,)
+               for a, p in zip(literal.atom.args, declared)]
+    return [GroundLiteral(Atom(literal.atom.predicate, args), False)
+            for args in itertools.product(*choices)]
+
+
+def _undoes(action: GroundAction, negative: GroundLiteral) -> bool:
+    """Whether `action` makes the negated atom false."""
+    return action.deletes(negative.atom)
 
 
 def _breaks(action: GroundAction, negative: GroundLiteral) -> bool:
-    """Whether `action` makes some instance of the negated atom true."""
-    return any(matches(negative.atom, x) for x in action.add)
+    """Whether `action` makes the negated atom true."""
+    return negative.atom in action.add
 
 
 @dataclass(slots=True)
@@ -297,7 +306,8 @@ def _regress(rest: Sequence[GroundAction], task: Task) -> frozenset[Atom] | None
     for action in reversed(rest):
         if any(action.deletes(a) for a in need):
             return None
-        need = (need - set(action.add)) | {fact_of(p) for p in action.preconditions}
+        need = (need - set(action.add)) | {fact_of(n) for p in action.preconditions
+                                            for n in instances(p, task)}
     return frozenset(need)
 
 
