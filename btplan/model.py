@@ -253,7 +253,12 @@ class GroundLiteral(NamedTuple):
     positive: bool = True
 
     def holds(self, state: frozenset[Atom] | set[Atom]) -> bool:
-        return (self.atom in state) is self.positive
+        if self.positive:
+            return self.atom in state
+        if self.atom in state:
+            return False
+        # `not blocks(_, t)`: no atom of the state matches the pattern.
+        return WILDCARD not in self.atom.args or not any(matches(self.atom, a) for a in state)
 
     def __str__(self) -> str:
         return str(self.atom) if self.positive else f"not {self.atom}"

@@ -2,7 +2,7 @@
 
 Any object with a `name` and `act(world, tick) -> list[Disturbance]` is an agent. This
 one reacts to the state rather than to a fixed tick, which is the paper's Example 2:
-the tree grows a ClearPath subtree on the fly. Run: python examples/custom_agent.py
+the tree grows, on the fly, a subtree that puts the sphere aside. Run: python examples/custom_agent.py
 """
 
 from pathlib import Path
@@ -23,7 +23,6 @@ class Saboteur:
             return []
         self.fired = True
         world.set_fact(Atom("blocks", ("sphere", "tau_goal")))
-        world.clear_fact(Atom("free", ("tau_goal",)))
         return [Disturbance(tick, self.name, "rolled the sphere onto tau_goal", "set")]
 
 

@@ -16,8 +16,11 @@ EXPECTED = {
     "run_disturbed.py": ["calm: reached=True ticks=11 expansions=4",
                          "disturbed: reached=True", "expansions=4",
                          "tick 11: undid Pick(cube)"],
-    "export_xml.py": ['BTCPP_format="4"', "<ReactiveFallback", '<ClearPath s="sphere"'],
-    "custom_agent.py": ["reached: True", "grew at free(tau_goal) with ClearPath(sphere, tau_goal)"],
+    "export_xml.py": ['BTCPP_format="4"', "<ReactiveFallback", '<Place o="sphere" l="aside"/>',
+                      '<blocks o="_" t="tau_goal"/>', '<Action ID="Place">'],
+    "custom_agent.py": ["reached: True",
+                        "grew at not blocks(_, tau_goal) with Place(sphere, aside)",
+                        "grew at holding(sphere) with Pick(sphere)"],
 }
 
 

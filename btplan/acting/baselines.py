@@ -27,7 +27,15 @@ from typing import Any
 
 from btplan.bt import FAILURE, RUNNING, SUCCESS
 from btplan.errors import InputError, MissingExtraError
-from btplan.model import EQUALITY, Atom, GroundAction, GroundLiteral, Task, instantiate
+from btplan.model import (
+    EQUALITY,
+    WILDCARD,
+    Atom,
+    GroundAction,
+    GroundLiteral,
+    Task,
+    instantiate,
+)
 from btplan.worlds.agents import Agent, act_all
 
 BASELINES = ("replan", "repair", "replan-unlimited")
@@ -44,21 +52,29 @@ def require_pyperplan() -> None:
 
 
 def check_strips(task: Task) -> None:
-    """pyperplan states STRIPS only: positive preconditions and goals."""
+    """pyperplan states STRIPS only: positive goals (negative preconditions are compiled)."""
     negative = [str(g) for g in task.goal_literals if not g.positive]
-    negative += sorted({f"{a.name}: not {p.predicate}" for a in task.domain.actions
-                        for p in a.preconditions if not p.positive and p.predicate != EQUALITY})
     if negative:
         raise InputError(f"the baselines plan STRIPS tasks only; this one has negative "
-                         f"conditions ({', '.join(negative[:3])})", None,
+                         f"goals ({', '.join(negative[:3])})", None,
                          "compare with --method btplan only")
+
+
+def fact_of(literal: GroundLiteral) -> Atom:
+    """The STRIPS fact for a precondition: a negative one (`not blocks(_, t)`) is a fact
+    of its own, true in a state where the literal holds."""
+    return literal.atom if literal.positive else Atom(f"not {literal.atom.predicate}",
+                                                      literal.atom.args)
 
 
 class Grounding:
     """Every grounded action of a task as pyperplan operators, built once per run.
 
-    `where` constraints on predicates that actions or agents may change (ClearPath's
-    `blocks(s, t)`) become preconditions; the others filter the groundings.
+    `where` constraints on predicates that actions or agents may change become
+    preconditions; the others filter the groundings. A negative precondition becomes a
+    fact of its own (fact_of), made true by actions that delete its atom and false by
+    actions that add it; a wildcard one (`not blocks(_, t)`) becomes one such fact per
+    object the wildcard can stand for, all needed: exact STRIPS.
     """
 
     def __init__(self, task: Task) -> None:
@@ -92,14 +108,21 @@ class Grounding:
                     pre = (*action.preconditions, *(e for e in extra if e.positive))
                     self.actions.append(action.model_copy(update={"preconditions": pre}))
         universe = set(state).union(*(a.add for a in self.actions))
-        universe.update(p.atom for a in self.actions for p in a.preconditions)
+        universe.update(p.atom for a in self.actions for p in a.preconditions if p.positive)
         universe.update(g.atom for g in task.goal_literals)
+        self.negatives = sorted({n for a in self.actions for p in a.preconditions
+                                 if not p.positive for n in instances(p, task)})
+        plain = frozenset(universe)
+        universe.update(fact_of(n) for n in self.negatives)
         self.universe = frozenset(universe)
         self.by_name = {str(a): a for a in self.actions}
         self.operators = [
-            Operator(str(a), frozenset(str(p.atom) for p in a.preconditions),
-                     frozenset(str(x) for x in a.add),
-                     frozenset(str(x) for x in self.universe if a.deletes(x)))
+            Operator(str(a), frozenset(str(fact_of(n)) for p in a.preconditions
+                                       for n in instances(p, task)),
+                     frozenset(str(x) for x in a.add)
+                     | {str(fact_of(n)) for n in self.negatives if _undoes(a, n)},
+                     frozenset(str(x) for x in plain if a.deletes(x))
+                     | {str(fact_of(n)) for n in self.negatives if _breaks(a, n)})
             for a in self.actions
         ]
         self.facts = {str(x) for x in self.universe}
@@ -114,13 +137,36 @@ class Grounding:
         from pyperplan.task import Task as StripsTask
 
         target = self.goal if goal is None else goal
-        init = frozenset(str(x) for x in state if x in self.universe)
+        init = frozenset(str(x) for x in state if x in self.universe) | {
+            str(fact_of(n)) for n in self.negatives if n.holds(state)}
         strips = StripsTask("replan", self.facts, init, target, self.operators)
         heuristic = self._heuristics.get(target)
         if heuristic is None:  # h_FF depends on the goal only, not on the initial state
             heuristic = self._heuristics[target] = hFFHeuristic(strips)
         found = greedy_best_first_search(strips, heuristic)
         return None if found is None else [self.by_name[op.name] for op in found]
+
+
+def instances(literal: GroundLiteral, task: Task) -> list[GroundLiteral]:
+    """A precondition as plain literals: `not blocks(_, t)` is `not blocks(o, t)` for
+    every object o the wildcard can stand for (the predicate's parameter type)."""
+    if literal.positive or WILDCARD not in literal.atom.args:
+        return [literal]
+    declared = task.domain.predicate_map[literal.atom.predicate].parameters
+    choices = [task.objects_of(p.type) if a == WILDCARD else (a,)
+               for a, p in zip(literal.atom.args, declared)]
+    return [GroundLiteral(Atom(literal.atom.predicate, args), False)
+            for args in itertools.product(*choices)]
+
+
+def _undoes(action: GroundAction, negative: GroundLiteral) -> bool:
+    """Whether `action` makes the negated atom false."""
+    return action.deletes(negative.atom)
+
+
+def _breaks(action: GroundAction, negative: GroundLiteral) -> bool:
+    """Whether `action` makes the negated atom true."""
+    return negative.atom in action.add
 
 
 @dataclass(slots=True)
@@ -260,7 +306,8 @@ def _regress(rest: Sequence[GroundAction], task: Task) -> frozenset[Atom] | None
     for action in reversed(rest):
         if any(action.deletes(a) for a in need):
             return None
-        need = (need - set(action.add)) | {p.atom for p in action.preconditions}
+        need = (need - set(action.add)) | {fact_of(n) for p in action.preconditions
+                                            for n in instances(p, task)}
     return frozenset(need)
 
 

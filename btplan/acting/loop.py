@@ -41,20 +41,19 @@ from btplan.planner import (
     literal_of,
     resolve_conflicts,
 )
+from btplan.planner.achievers import ALL, guards
 from btplan.planner.conflicts import achiever_leaves, alternative_conflicts
 from btplan.planner.expand import (
     achiever_sequence,
     condition_node,
     conditions_bfs,
     goal_check,
+    guard_nodes,
     non_circular,
     pursued,
 )
 from btplan.planner.lookahead import closest_first, keep_reachable, needed_later
 from btplan.planner.protect import white_knights
-
-ALL = 1 << 30
-"""A limit on achievers that keeps them all."""
 
 BACKTRACKS = 2
 """Further batches of achievers tried when the first has no conflict-free place."""
@@ -127,6 +126,7 @@ class BlendedLoop:
         self.ticks = 0
         self._expanded: set[Node] = set()
         self._dead: set[Node] = set()
+        self._guards_seen: set[Node] = set()
         self._circular: set[GroundLiteral] = set()
         self._seen: set[tuple[frozenset[Atom], int]] = set()
         self._last_state: frozenset[Atom] | None = None
@@ -149,6 +149,7 @@ class BlendedLoop:
 
     def tick(self) -> TickReport:
         before = self.world.facts()
+        ended = self._actions_ended()
         if before != self._last_state:
             self._seen.clear()  # an outside change: a repeated state is no longer a loop
         self.ticks += 1
@@ -174,7 +175,9 @@ class BlendedLoop:
                 self._stall()
             break
         after = self.world.facts()
-        if after != before:
+        # A state seen again is a loop only across actions that ended: while one action
+        # runs, a continuous world may pass a state twice (driving past a spot).
+        if after != before and (status is FAILURE or self._actions_ended() != ended):
             key = (after, len(self.expansions))
             if key in self._seen:
                 raise NoProgressError(self._loop_reason())
@@ -302,9 +305,14 @@ class BlendedLoop:
         """
         judge = self._judge()
         appended: list[tuple[GroundAction, Node]] = []
+        literal = literal_of(fallback.children[0])
+        assert literal is not None
+        state = self.world.facts()
         for action in actions[: self.options.max_alternatives]:
             self.grounding[action.key] = action
-            alternative = achiever_sequence(action, self.task)
+            guard = guards(action, literal, state)
+            alternative = achiever_sequence(action, self.task, guard)
+            self._never_expand(alternative.children[: len(guard)])
             fallback.append(alternative)
             appended.append((action, alternative))
         clean = [(a, n) for a, n in appended if not alternative_conflicts(fallback, n, judge)]
@@ -353,10 +361,13 @@ class BlendedLoop:
         if self.options.backtrack and spare:
             batches += [spare[i:i + width] for i in range(0, len(spare), width)][:BACKTRACKS]
         first: UnresolvableConflictError | None = None
+        state = self.world.facts()
         for batch in batches:
             for action in batch:
                 self.grounding[action.key] = action
-            subtree = expand_tree(self.tree, node, batch, self.task)
+            guarded = self._guards(batch, literal, state)
+            subtree = expand_tree(self.tree, node, batch, self.task, guarded)
+            self._never_expand(guard_nodes(subtree, guarded))
             if self.options.protect_goals:
                 self._protect(subtree)
             try:
@@ -371,6 +382,19 @@ class BlendedLoop:
             return self._record(literal, batch, len(resolution.conflicts), resolution.moves)
         assert first is not None
         raise first
+
+    @staticmethod
+    def _guards(
+        actions: list[GroundAction], literal: GroundLiteral, state: frozenset[Atom]
+    ) -> dict[LeafKey, tuple[GroundLiteral, ...]]:
+        """Guards for the achievers of a wildcard condition (achievers.guards)."""
+        return {a.key: g for a in actions if (g := guards(a, literal, state))}
+
+    def _never_expand(self, nodes: list[Node]) -> None:
+        """Guards say what an alternative is for; they are checked, never achieved."""
+        self._expanded.update(nodes)
+        self._dead.update(nodes)
+        self._guards_seen.update(nodes)
 
     def _protect(self, subtree: Fallback) -> None:
         """Check, before each new achiever, what keeps the other goals reachable."""
@@ -388,7 +412,11 @@ class BlendedLoop:
 
     def _judge(self) -> Judge:
         mutexes = self.index.mutexes if self.options.mutexes else None
-        return Judge(self.grounding, mutexes)
+        return Judge(self.grounding, mutexes, frozenset(self._guards_seen))
+
+    def _actions_ended(self) -> int:
+        """How many actions the world saw finish or fail (0 for a world without logs)."""
+        return len(getattr(self.world, "executed", ())) + len(getattr(self.world, "failed", ()))
 
     def _stall(self) -> None:
         """The tree failed with nothing to expand (an action failed): retry, a few times."""

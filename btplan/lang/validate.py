@@ -252,10 +252,11 @@ class _LiteralChecker:
         predicate = check_predicate(lit, self.predicates)
         for arg, param in zip(lit.args, predicate.parameters):
             if arg.text == WILDCARD:
-                if part != "post" or lit.positive:
+                if part not in ("post", "pre") or lit.positive:
                     raise arg.at.error(
-                        "the wildcard '_' is only allowed in a negative postcondition",
-                        "write e.g. 'post: not near(_), near(l)'",
+                        "the wildcard '_' is only allowed in a negative postcondition "
+                        "or precondition",
+                        "write e.g. 'post: not near(_), near(l)' or 'pre: not blocks(_, t)'",
                     )
                 continue
             arg_type = self._arg_type(arg, lit, part)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 from btplan.model import (
+    WILDCARD,
     ActionTemplate,
     Atom,
     GroundAction,
@@ -18,12 +19,16 @@ from btplan.model import (
     Literal,
     Task,
     instantiate,
+    matches,
 )
 from btplan.planner.grounding import Objects, bindings, unify
 from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
 from btplan.planner.options import PlannerOptions
 from btplan.planner.protocol import Refiner
+
+ALL = 1 << 30
+"""A limit on achievers that keeps them all."""
 
 
 class _Shared:
@@ -97,6 +102,13 @@ class AchieverIndex:
         then the number of preconditions that fail now; then the name, for ties.
         """
         found: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
+        if not condition.positive and WILDCARD in condition.atom.args:
+            # `not blocks(_, t)`: undo each instance that holds now; guards() says which.
+            for atom in instances(condition, state):
+                for action in self.achievers(GroundLiteral(atom, False), state, refine, ALL):
+                    found.setdefault(action.key, action)
+            scored = sorted((self._rank(a, state), a) for a in found.values())
+            return [a for score, a in scored if score[0] < math.inf][: limit or self.options.max_alternatives]
         reachable = self.relaxed.costs(state) if self.options.prune_bindings else None
         for template, effect in self._by_effect.get((condition.atom.predicate, condition.positive), []):
             partial = unify(self.task, template, effect, condition.atom, self.objects)
@@ -131,6 +143,25 @@ class AchieverIndex:
         # Values a backend refined (poses, trajectories) are unknown to the relaxed
         # model; count such preconditions instead of calling them unreachable.
         return float(len(atoms))
+
+
+def instances(condition: GroundLiteral, state: frozenset[Atom]) -> list[Atom]:
+    """The atoms of `state` that a wildcard condition's pattern matches, sorted."""
+    return sorted(a for a in state if matches(condition.atom, a))
+
+
+def guards(action: GroundAction, condition: GroundLiteral, state: frozenset[Atom]
+           ) -> tuple[GroundLiteral, ...]:
+    """What an achiever of a wildcard condition is for: the instances it undoes.
+
+    `not blocks(_, t)` is achieved by undoing each `blocks(c, t)` that holds; the
+    alternative for c is guarded by `blocks(c, t)`, so that once c is out of the way it
+    is not run again (picking c back up) when another object blocks t later.
+    """
+    if condition.positive or WILDCARD not in condition.atom.args:
+        return ()
+    return tuple(GroundLiteral(a, True) for a in instances(condition, state)
+                 if action.deletes(a))
 
 
 def _makes_true(action: GroundAction, condition: GroundLiteral) -> bool:

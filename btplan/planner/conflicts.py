@@ -55,6 +55,9 @@ class Judge:
 
     grounding: Grounding
     mutexes: Mutexes | None = None
+    guards: frozenset[Node] = frozenset()
+    """Guard conditions (achievers.guards): they say what an alternative is for, and
+    undoing them is its purpose, so they are never an earlier condition to protect."""
 
     def threatens(
         self, doers: list[Action], conditions: list[GroundLiteral], rule: str
@@ -74,7 +77,7 @@ class Judge:
         self, held: list[GroundLiteral], node: Node, doers: list[Action], rule: str
     ) -> list[Conflict]:
         """Conflicts when every way `node` can succeed needs something `held` excludes."""
-        ways = needs_by_alternative(node)
+        ways = needs_by_alternative(node, self.guards)
         found: list[Conflict] = []
         for needs in ways:
             conflicts = self.excludes(held, needs, doers, rule)
@@ -134,19 +137,22 @@ def achiever_leaves(node: Node) -> list[Action]:
     return []
 
 
-def needs_by_alternative(node: Node) -> list[list[GroundLiteral]]:
+def needs_by_alternative(
+    node: Node, guards: frozenset[Node] = frozenset()
+) -> list[list[GroundLiteral]]:
     """For each way `node` can succeed, the conditions that way needs.
 
-    A condition needs itself; an atomic BT's alternatives need their preconditions; a
-    Sequence needs all its children's conditions; an action needs nothing here (its
-    preconditions are its siblings).
+    A condition needs itself; an atomic BT's alternatives need their preconditions (not
+    their guards: those say when the alternative applies); a Sequence needs all its
+    children's conditions; an action needs nothing here (its preconditions are its
+    siblings).
     """
     literal = literal_of(node)
     if literal is not None:
         return [[literal]]
     if isinstance(node, Fallback):
         return [
-            [g for c in child.children[:-1] for g in guarantees(c)]
+            [g for c in child.children[:-1] if c not in guards for g in guarantees(c)]
             for child in node.children[1:]
             if isinstance(child, SequenceNode)
         ]
@@ -182,6 +188,8 @@ def find_conflicts(subtree: Node, judge: Judge) -> list[Conflict]:
     found: list[Conflict] = []
     for sequence, index in sequence_slots(subtree):
         for earlier in sequence.children[:index]:
+            if earlier in judge.guards:
+                continue
             held = guarantees(earlier)
             found += judge.blocks(held, subtree, achiever_leaves(earlier), "needed after it holds")
             found += judge.threatens(own, held, "undoes earlier work")
@@ -219,6 +227,8 @@ def alternative_conflicts(
     own = [c for c in alternative.children[-1:] if isinstance(c, Action)]
     for sequence, index in sequence_slots(subtree)[:depth]:
         for earlier in sequence.children[:index]:
+            if earlier in judge.guards:
+                continue
             held = guarantees(earlier)
             if judge.excludes(held, needs, achiever_leaves(earlier), ""):
                 return True

@@ -8,7 +8,7 @@ is an Inverter over the Condition leaf, and that Inverter is what gets expanded.
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 
 from btplan.bt import FAILURE, Action, BehaviorTree, Condition, Fallback, Node
 from btplan.bt import Sequence as SequenceNode
@@ -87,37 +87,58 @@ def goal_check(tree: BehaviorTree) -> Node | None:
     return None
 
 
-def atomic_bt(condition: Node, achievers: Sequence[GroundAction], task: Task) -> Fallback:
+Guards = Mapping[tuple[str, tuple[str, ...]], tuple[GroundLiteral, ...]]
+"""For some achievers (by key), conditions checked first that are never expanded."""
+
+
+def atomic_bt(
+    condition: Node, achievers: Sequence[GroundAction], task: Task, guards: Guards | None = None
+) -> Fallback:
     """Fallback(C, Sequence(pre(A1)..., A1), ...): the paper's Figure 3.
 
     `condition` itself becomes the first child, so it must be detached already.
     """
     alternatives: list[Node] = [condition]
-    alternatives += [achiever_sequence(action, task) for action in achievers]
+    alternatives += [achiever_sequence(action, task, (guards or {}).get(action.key, ()))
+                     for action in achievers]
     return Fallback(alternatives)
 
 
-def achiever_sequence(action: GroundAction, task: Task) -> SequenceNode:
-    """Sequence(pre(A)..., A): one alternative of an atomic BT.
+def achiever_sequence(
+    action: GroundAction, task: Task, guards: Sequence[GroundLiteral] = ()
+) -> SequenceNode:
+    """Sequence(guards..., pre(A)..., A): one alternative of an atomic BT.
 
     A precondition written twice (`mounted(q), mounted(r)` bound with q = r) is checked
-    once: a second copy would only be ticked, and expanded, twice.
+    once: a second copy would only be ticked, and expanded, twice. Guards (what the
+    alternative is for, see achievers.guards) come first.
     """
-    steps = [condition_node(p, task) for p in dict.fromkeys(action.preconditions)]
+    steps = [condition_node(p, task) for p in dict.fromkeys([*guards, *action.preconditions])]
     return SequenceNode([*steps, action_node(action)])
 
 
+def guard_nodes(subtree: Fallback, guards: Guards) -> list[Node]:
+    """The guard conditions at the head of a fallback's achiever sequences."""
+    found: list[Node] = []
+    for alternative in subtree.children[1:]:
+        last = alternative.children[-1] if alternative.children else None
+        if isinstance(alternative, SequenceNode) and isinstance(last, Action):
+            found += alternative.children[: len(guards.get(last.key, ()))]
+    return found
+
+
 def expand_tree(
-    tree: BehaviorTree, condition: Node, achievers: Sequence[GroundAction], task: Task
+    tree: BehaviorTree, condition: Node, achievers: Sequence[GroundAction], task: Task,
+    guards: Guards | None = None,
 ) -> Fallback:
     """Algorithm 2: replace the failed condition by its atomic BT; return the new subtree."""
     parent = condition.parent
     if parent is None:
-        subtree = atomic_bt(condition, achievers, task)
+        subtree = atomic_bt(condition, achievers, task, guards)
         tree.root = subtree
         return subtree
     index = parent.remove(condition)
-    subtree = atomic_bt(condition, achievers, task)
+    subtree = atomic_bt(condition, achievers, task, guards)
     parent.insert(index, subtree)
     return subtree
 

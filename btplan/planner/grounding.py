@@ -186,7 +186,9 @@ def unify(
 ) -> dict[str, str] | None:
     """The partial binding under which `effect` becomes `atom`, or None if none does.
 
-    Bound objects must have the parameter's type; `_` in an effect matches anything.
+    Bound objects must have the parameter's type; `_` in an effect matches anything. A
+    value that is no object of the task was named by the world (a pose it sampled for a
+    refined parameter, now a condition `near(pose3)` to achieve) and is accepted.
     """
     if effect.predicate != atom.predicate or len(effect.args) != len(atom.args):
         return None
@@ -203,7 +205,8 @@ def unify(
             continue
         if binding.get(name, value) != value:
             return None
-        if not parameter.refined and not table.has_type(value, parameter.type):
-            return None
+        if (not parameter.refined and not table.has_type(value, parameter.type)
+                and value in task.object_types):
+            return None  # a value the world refined (pose3) is not a task object: allowed
         binding[name] = value
     return binding

@@ -44,13 +44,15 @@ class BlockPath(_Meddler):
     def __init__(self, rate: float, seed: int, obstacle: str = "sphere",
                  path: str = "tau_goal") -> None:
         super().__init__(rate, seed, 101)
-        self.free = Atom("free", (path,))
+        self.obstacle = obstacle
         self.blocks = Atom("blocks", (obstacle, path))
 
     def meddle(self, world: Any, state: frozenset[Atom], pick: float) -> str | None:
-        if self.free not in state:
+        if self.blocks in state or Atom("holding", (self.obstacle,)) in state:
             return None
-        world.clear_fact(self.free)
+        for atom in sorted(state):  # it rolls away from where it was put
+            if atom.predicate == "on" and atom.args[:1] == (self.obstacle,):
+                world.clear_fact(atom)
         world.set_fact(self.blocks)
         return f"{self.blocks.args[0]} blocks {self.blocks.args[1]}"
 

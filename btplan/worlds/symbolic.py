@@ -17,6 +17,7 @@ from btplan.bt import FAILURE, RUNNING, SUCCESS, LeafKey, Status
 from btplan.errors import WorldError
 from btplan.model import (
     EQUALITY,
+    WILDCARD,
     ActionTemplate,
     Atom,
     GroundAction,
@@ -24,6 +25,7 @@ from btplan.model import (
     Parameter,
     Task,
     instantiate,
+    matches,
 )
 
 
@@ -98,6 +100,9 @@ class SymbolicWorld:
         predicate, args = key
         if predicate == EQUALITY:
             return len(args) == 2 and args[0] == args[1]
+        if WILDCARD in args:  # blocks(_, t): some atom matches
+            pattern = Atom(predicate, tuple(args))
+            return any(matches(pattern, atom) for atom in self._state)
         return key in self._state
 
     def start(self, key: LeafKey) -> Status:
@@ -120,7 +125,8 @@ class SymbolicWorld:
 
     def _advance(self, key: LeafKey, action: GroundAction) -> Status:
         """One tick of a running action: fail, keep running, or finish and apply effects."""
-        if self._take_injected_failure(action) or not action.applicable(self._state):
+        if (self._take_injected_failure(action) or not action.applicable(self._state)
+                or self._stale(action)):
             return self._fail(key, action)
         probability = self._failure_probability.get(action.name, 0.0)
         if probability > 0.0 and self._rng.random() < probability:
@@ -154,8 +160,10 @@ class SymbolicWorld:
         """Objects of the parameter's type that satisfy the template's `where` constraints.
 
         Constraints that mention other, still unbound parameters do not filter here;
-        the planner checks them once those are bound. Sorted by name, so the answer
-        is the same on every run.
+        the planner checks them once those are bound. A value the goal names (the goal
+        region) is where the goal wants its own objects: it is offered only when nothing
+        else fits, so an obstacle is put aside, not on the goal. Sorted by name, so the
+        answer is the same on every run.
         """
         out: list[str] = []
         for candidate in self.task.objects_of(parameter.type):
@@ -163,7 +171,22 @@ class SymbolicWorld:
             trial[parameter.name] = candidate
             if all(self._holds(c, trial) for c in _decided(template, trial)):
                 out.append(candidate)
-        return out
+        named = {a for g in self.task.goal_literals for a in g.atom.args}
+        return [c for c in out if c not in named] or out
+
+    def _stale(self, action: GroundAction) -> bool:
+        """A refined value whose `where` constraints no longer hold: a route that is gone.
+
+        The value was chosen in an earlier state; running it in this one would act on a
+        world that no longer exists, so the action fails and the loop refines again.
+        """
+        template = self._templates.get(action.name)
+        if template is None or not any(p.refined for p in template.parameters):
+            return False
+        refined = {p.name for p in template.parameters if p.refined}
+        binding = {p.name: a for p, a in zip(template.parameters, action.args)}
+        return not all(self._holds(c, binding) for c in template.constraints
+                       if refined & set(c.args))
 
     def _holds(self, literal: Literal, binding: Mapping[str, str]) -> bool:
         args = tuple(binding.get(a, a) for a in literal.args)

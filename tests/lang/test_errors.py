@@ -132,8 +132,8 @@ CASES = {
         "post:  not near(_), near(l)",
         "post:  near(_), near(l)",
         (30, 21),
-        "the wildcard '_' is only allowed in a negative postcondition",
-        "write e.g. 'post: not near(_), near(l)'",
+        "the wildcard '_' is only allowed in a negative postcondition or precondition",
+        "write e.g. 'post: not near(_), near(l)' or 'pre: not blocks(_, t)'",
     ),
     "negative initial fact": (
         "        hand_empty\n        free",

@@ -16,6 +16,7 @@ from btplan.planner import (
     get_condition_to_expand,
     increase_priority,
 )
+from btplan.planner.achievers import guards
 from btplan.planner.expand import condition_node, expand_tree, initial_tree
 from btplan.worlds.symbolic import SymbolicWorld
 from tests.planner.shapes import DOMAINS, shape
@@ -37,15 +38,33 @@ def test_achievers_unify_bind_refine_and_skip_where_literals() -> None:
     state = world.facts()
     moves = index.achievers(lit("near(cube)"), state, world.refine)
     assert [str(a) for a in moves] == ["MoveTo(cube, tau_cube)"]  # t refined by route(l, t)
-    assert [str(p) for p in moves[0].preconditions] == ["free(tau_cube)"]
-    # Place is limited by `where: target(l)`: only the goal is a target.
+    assert [str(p) for p in moves[0].preconditions] == ["not blocks(_, tau_cube)"]
+    # Place's refined target comes from the world, which keeps the goal for the goal's
+    # own objects: an object to put down goes aside.
     assert [str(a) for a in index.achievers(lit("hand_empty()"), state, world.refine)] == [
-        "Drop(cube)", "Drop(sphere)", "Place(cube, goal)", "Place(sphere, goal)"]
-    # ClearPath needs an object that blocks the path now: none does yet.
-    assert index.achievers(lit("free(tau_goal)"), state, world.refine) == []
+        "Drop(cube)", "Drop(sphere)", "Place(cube, aside)", "Place(sphere, aside)"]
+    # The path is free: nothing to undo.
+    free = lit("blocks(_, tau_goal)", positive=False)
+    assert free.holds(state) and index.achievers(free, state, world.refine) == []
     world.set_fact(Atom("blocks", ("sphere", "tau_goal")))
-    assert [str(a) for a in index.achievers(lit("free(tau_goal)"), world.facts(), world.refine)
-            ] == ["ClearPath(sphere, tau_goal)"]
+    assert not free.holds(world.facts())
+    found = index.achievers(free, world.facts(), world.refine)
+    assert [str(a) for a in found] == ["Place(sphere, aside)"]
+    # Its alternative is guarded by the instance it undoes.
+    assert guards(found[0], free, world.facts()) == (lit("blocks(sphere, tau_goal)"),)
+
+
+def test_a_wildcard_condition_with_two_instances_undoes_each() -> None:
+    index, world = obstacle()
+    world.set_fact(Atom("blocks", ("sphere", "tau_goal")))
+    world.set_fact(Atom("blocks", ("cube", "tau_goal")))
+    free = lit("blocks(_, tau_goal)", positive=False)
+    found = index.achievers(free, world.facts(), world.refine)
+    assert sorted(str(a) for a in found) == ["Place(cube, aside)", "Place(sphere, aside)"]
+    assert [guards(a, free, world.facts()) for a in found if a.args[0] == "cube"] == [
+        (lit("blocks(cube, tau_goal)"),)]
+    assert world.check(("blocks", ("_", "tau_goal")))
+    assert not world.check(("blocks", ("_", "tau_cube")))
 
 
 def test_negative_conditions_are_achieved_by_deleting_actions_including_wildcards() -> None:
@@ -115,14 +134,16 @@ def test_an_earlier_condition_that_excludes_a_need_is_a_conflict() -> None:
     hold = Fallback([Condition("holding", ("cube",)),
                      Sequence([Condition("hand_empty"), Action("Pick", ("cube",))])])
     world.set_fact(Atom("blocks", ("sphere", "tau_goal")))
-    clear = index.achievers(lit("free(tau_goal)"), world.facts(), world.refine)
-    free = Condition("free", ("tau_goal",))
+    free_lit = lit("blocks(_, tau_goal)", positive=False)
+    clear = index.achievers(free_lit, world.facts(), world.refine)
+    free = condition_node(free_lit, task)
     root = Sequence([hold, free])
     tree = BehaviorTree(root)
     subtree = expand_tree(tree, free, clear, task)
     grounding = {a.key: a for a in clear}
     grounding[("Pick", ("cube",))] = world.ground(("Pick", ("cube",)))
     found = find_conflicts(subtree, Judge(grounding, index.mutexes))
+    # Putting the sphere aside needs it in hand, which holding the cube excludes.
     assert [str(c) for c in found] == [
-        "holding(cube) excludes hand_empty() (needed after it holds)"]
+        "holding(cube) excludes holding(sphere) (needed after it holds)"]
     assert find_conflicts(hold, Judge(grounding, index.mutexes)) == []

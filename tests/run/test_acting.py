@@ -16,14 +16,15 @@ from btplan.worlds.agents import Disturbance
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 OBSTACLE = load(str(DOMAINS / "pick_place_obstacle.bt"))
-BLOCK_EARLY = ["set:blocks(sphere, tau_goal)@2", "clear:free(tau_goal)@2"]
+BLOCK_EARLY = ["set:blocks(sphere, tau_goal)@2"]
 
 
 def test_an_early_obstruction_is_cleared_with_the_published_algorithms() -> None:
     result = run(OBSTACLE, disturb=BLOCK_EARLY, options=PlannerOptions.paper())
     assert result.reached
     finished = result.summary().finished
-    assert finished.index("ClearPath(sphere, tau_goal)") < finished.index("Place(cube, goal)")
+    assert finished.index("Pick(sphere)") < finished.index("Place(sphere, aside)")
+    assert finished.index("Place(sphere, aside)") < finished.index("Place(cube, goal)")
 
 
 def test_a_run_that_cannot_go_on_ends_not_reached_with_the_reason() -> None:
@@ -46,17 +47,16 @@ class Saboteur:
         if self.fired or Atom("holding", ("cube",)) not in world.facts():
             return []
         self.fired = True
-        world.clear_fact(Atom("free", ("tau_goal",)))
         world.set_fact(Atom("blocks", ("sphere", "tau_goal")))
         return [Disturbance(tick, self.name, "blocked tau_goal", "set")]
 
 
 def test_python_agents_act_beside_spec_agents() -> None:
-    result = run(OBSTACLE, agents=[Saboteur()], disturb=["undo:ClearPath@30.."])
+    result = run(OBSTACLE, agents=[Saboteur()], disturb=["undo:Pick@30.."])
     assert result.reached
     total = result.summary()
     assert total.disturbances[0].agent == "saboteur"
-    assert "free(tau_goal)" in [e.condition for _, e in total.expansions]
+    assert "not blocks(_, tau_goal)" in [e.condition for _, e in total.expansions]
 
 
 def test_bad_specs_raise_located_input_errors() -> None:

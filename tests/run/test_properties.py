@@ -88,8 +88,9 @@ def test_alternatives_the_second_achiever_runs_when_the_first_fails() -> None:
 
 def test_runtime_expansion_a_blocked_path_grows_the_tree_on_the_fly() -> None:
     """Property 4 (the paper's Example 2): the path to the goal gets blocked while the robot
-    carries the cube; the tree grows by a ClearPath subtree, moved before Place to resolve
-    the conflict on the hand, and the goal is still reached."""
+    carries the cube; the tree grows by a subtree that picks the sphere and places it
+    aside, moved before the cube is picked to resolve the conflict on the hand, and the
+    goal is still reached."""
     task = load(str(DOMAINS / "pick_place_obstacle.bt"))
     calm = run(task)
     at = first_tick(calm.records, "finished", "Pick(cube)") + 1
@@ -98,20 +99,21 @@ def test_runtime_expansion_a_blocked_path_grows_the_tree_on_the_fly() -> None:
     def remember(root: Node, reached: Mapping[int, Status], record: TickRecord) -> None:
         seen[record.tick] = frozenset(id(n) for n in root.walk())
 
-    result = run(task, disturb=[f"set:blocks(sphere, tau_goal)@{at}",
-                                f"clear:free(tau_goal)@{at}"], view=remember)
+    result = run(task, disturb=[f"set:blocks(sphere, tau_goal)@{at}"], view=remember)
     assert result.reached
     total = result.summary()
-    assert [d.description for d in total.disturbances] == [
-        "set blocks(sphere, tau_goal)", "cleared free(tau_goal)"]
+    assert [d.description for d in total.disturbances] == ["set blocks(sphere, tau_goal)"]
     grown = [(t, e) for t, e in total.expansions if t >= at]
     assert grown[0][0] == at
-    assert grown[0][1].condition == "free(tau_goal)"
-    assert grown[0][1].achievers == ("ClearPath(sphere, tau_goal)",)
+    assert grown[0][1].condition == "not blocks(_, tau_goal)"
+    assert grown[0][1].achievers == ("Place(sphere, aside)",)
     assert grown[0][1].conflicts_resolved >= 1 and grown[0][1].moves >= 1
-    assert {e.condition for _, e in grown} == {"free(tau_goal)", "near(sphere)", "hand_empty()"}
+    assert [e.condition for _, e in grown] == [
+        "not blocks(_, tau_goal)", "holding(sphere)", "near(sphere)", "hand_empty()",
+        "near(aside)"]
     done_after = [a for r in result.records if r.tick >= at for a in r.finished]
-    assert done_after == ["MoveTo(sphere, tau_sphere)", "Drop(cube)", "ClearPath(sphere, tau_goal)",
+    assert done_after == ["MoveTo(sphere, tau_sphere)", "Drop(cube)", "Pick(sphere)",
+                          "MoveTo(aside, tau_aside)", "Place(sphere, aside)",
                           "MoveTo(cube, tau_cube)", "Pick(cube)", "MoveTo(goal, tau_goal)",
                           "Place(cube, goal)"]
     # Never rebuilt: every node of the tree before the obstruction is still in the final tree.

@@ -1,7 +1,7 @@
 """The domain's conditions, measured on the scene every time they are asked.
 
 Nothing is read from a stored symbolic state, so a change made by an external agent is
-seen on the next tick. `free(t)` re-plans a stale trajectory before checking it.
+seen on the next tick. `blocks(c, t)` re-plans a stale trajectory before checking it.
 """
 
 from __future__ import annotations
@@ -24,24 +24,19 @@ class Conditions:
         state = self.state
         name, args = key
         if name == "near":
-            return args[0] == state.clearing_now or state.is_near(args[0])
+            return state.is_near(args[0])
         if name == "holding":
-            return args[0] != state.clearing_now and state.lifted(args[0])
+            return state.in_hand(args[0]) is not None
         if name == "hand_empty":
-            # The complement of holding: fingers closing on a cube still on the floor
-            # are not holding it yet, and the hand is not yet taken.
-            held = state.held
-            return held is None or held == state.clearing_now or not state.lifted(held)
+            return state.in_hand() is None
         if name == "on":
             return state.on(args[0], args[1])
-        if name == "free":
-            return self.routes.free(args[0])
+        if name == "blocks":
+            found = self.routes.blockers(args[1])
+            return bool(found) if args[0] == "_" else args[0] in found
         if name == "route":
             traj = state.trajectories.get(args[1])
             return traj is not None and traj.target == args[0]
-        if name == "blocks":
-            traj = state.trajectories.get(args[1])
-            return traj is not None and args[0] in state.blockers(traj)
         raise WorldError(f"the PyBullet world cannot evaluate the condition {name!r}")
 
     def facts(self) -> frozenset[Atom]:
@@ -49,22 +44,17 @@ class Conditions:
         state = self.state
         found: set[Atom] = set(self.assumed)
         locations = [*state.cube_names, *(r.name for r in state.scene.regions), *sorted(state.poses)]
-        found.update(Atom("near", (n,)) for n in locations
-                     if n == state.clearing_now or state.is_near(n))
-        held = state.held
-        if held is None or held == state.clearing_now or not state.lifted(held):
-            found.add(Atom("hand_empty", ()))
-        else:
-            found.add(Atom("holding", (held,)))
+        found.update(Atom("near", (n,)) for n in locations if state.is_near(n))
+        held = state.in_hand()
+        found.add(Atom("hand_empty", ()) if held is None else Atom("holding", (held,)))
         found.update(Atom("on", (c, p)) for c in state.cube_names for p in locations
                      if state.on(c, p))
         for name in sorted(state.trajectories):
             traj = state.trajectories[name]
             found.add(Atom("route", (traj.target, name)))
             if traj.stale(state.base, traj.goal, state.layout()) or not state.present(traj.target):
-                free = self.routes.last_free.get(name, False)  # check(free(t)) measures it
+                blocking = self.routes.last_blockers.get(name, frozenset())  # check() measures it
             else:
-                free = self.routes.last_free[name] = not state.blockers(traj)
-            if free:
-                found.add(Atom("free", (name,)))
+                blocking = self.routes.blockers(name)
+            found.update(Atom("blocks", (c, name)) for c in sorted(blocking) if c in state.sim.cubes)
         return frozenset(found)

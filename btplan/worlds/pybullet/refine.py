@@ -1,7 +1,9 @@
 """RefineActions (Algorithm 1, line 5): continuous values the planner asks the world for.
 
-Trajectories are planned with OMPL, poses sampled off the path to clear, and the cubes
-that block a trajectory read off the scene.
+Trajectories are planned with OMPL; a place for a cube that the condition being achieved
+does not fix (an obstacle to put aside) is sampled off every known path and clear of the
+other cubes, so that the subtree the planner builds with it conflicts with no route.
+Values are named once and refreshed behind their name when they go stale (routes.py).
 """
 
 from __future__ import annotations
@@ -14,25 +16,15 @@ from btplan.worlds.pybullet.routes import Routes
 
 def refine_values(routes: Routes, template: ActionTemplate, binding: Mapping[str, str],
                   parameter: Parameter) -> list[str]:
-    """Trajectories are planned, poses sampled off the path, blockers read off the path."""
-    world = routes.state
-    domain = world.task.domain
-    related = [lit for lit in template.constraints if parameter.name in lit.args]
+    """Trajectories are planned to the bound location; places are sampled poses."""
+    domain = routes.state.task.domain
     if domain.is_subtype(parameter.type, "trajectory"):
+        related = [lit for lit in template.constraints if parameter.name in lit.args]
         target = _target_of(template, binding, parameter, related)
         return [routes.new_trajectory(target)] if target is not None else []
-    traj_name = next((v for _, v in sorted(binding.items()) if v in world.trajectories), None)
-    if domain.is_subtype(parameter.type, "pose"):
-        pose = routes.sample_pose(world.trajectories.get(traj_name) if traj_name else None)
+    if "pose" in domain.type_parents and domain.is_subtype("pose", parameter.type):
+        pose = routes.sample_pose()
         return [pose] if pose is not None else []
-    if traj_name is not None:
-        traj = world.trajectories[traj_name]
-        routes.prepare(traj_name)
-        found = sorted(c for c in world.blockers(traj) if c in world.sim.cubes)
-        allowed = set(world.task.objects_of(parameter.type))
-        found = [c for c in found if c in allowed]
-        traj.clearing.update(found)
-        return found
     return []
 
 

@@ -11,7 +11,8 @@ import time
 
 from btplan.worlds.pybullet import motion, samplers
 from btplan.worlds.pybullet.motion import Pose2
-from btplan.worlds.pybullet.paths import CHECK_FROM, Trajectory
+from btplan.worlds.pybullet.paths import CHECK_FROM, DRIVE_FROM, Trajectory
+from btplan.worlds.pybullet.scene import Point
 from btplan.worlds.pybullet.state import SceneState
 
 STEP = 0.05          # metres between waypoints of a path
@@ -28,8 +29,9 @@ class Routes:
         self._counter = itertools.count(1)
         self._no_detour: set[tuple[object, ...]] = set()
         self._no_path: set[tuple[object, ...]] = set()
-        self.last_free: dict[str, bool] = {}
-        """What `free(t)` was when last measured: the facts report it for a path not
+        self.refreshed = 0  # poses sampled again because they went stale
+        self.last_blockers: dict[str, frozenset[str]] = {}
+        """The cubes last measured on each path: the facts report them for a path not
         measured now (planned from elsewhere), so that they do not flicker as the robot moves."""
 
     def new_trajectory(self, target: str) -> str:
@@ -38,22 +40,57 @@ class Routes:
         self.prepare(name)
         return name
 
-    def sample_pose(self, avoid: Trajectory | None) -> str | None:
-        """Reserve a spot off `avoid`'s path to put an obstacle, and name it."""
-        spot = samplers.aside_spot(self.state, avoid)
+    def sample_pose(self) -> str | None:
+        """Reserve a spot off every known path to put an obstacle, and name it."""
+        spot = self._aside(None)
         if spot is None:
             return None
         name = f"pose{len(self.state.poses) + 1}"
         self.state.poses[name] = spot
         return name
 
-    def free(self, name: str) -> bool:
+    def refresh_pose(self, name: str) -> None:
+        """Sample a pose again, under its name, if it went stale: RefineActions once more.
+
+        A pose chosen earlier may now be taken by a cube, or lie on a path planned since;
+        the grounded action keeps its name and gets a value from the world as it is now.
+        """
+        state = self.state
+        spot = state.poses.get(name)
+        if spot is None or samplers.aside_fits(state, spot, self._paths(name), name):
+            return
+        fresh = self._aside(name)
+        if fresh is not None:
+            state.poses[name] = fresh
+            self.refreshed += 1
+
+    def _paths(self, pose: str | None) -> list[tuple[Pose2, ...]]:
+        """The known paths, except those that lead to `pose` itself."""
+        return [t.path for t in self.state.trajectories.values() if t.path and t.target != pose]
+
+    def _aside(self, pose: str | None) -> Point | None:
+        spot = samplers.aside_spot(self.state, self._paths(pose), pose)
+        if spot is None:  # every spot is near some path: keep off those to cubes and regions
+            poses = self.state.poses
+            paths = [t.path for t in self.state.trajectories.values()
+                     if t.path and t.target not in poses]
+            spot = samplers.aside_spot(self.state, paths, pose)
+        return spot
+
+    def blockers(self, name: str) -> frozenset[str]:
+        """The cubes that block trajectory `name` now ("(no path)" if it has none).
+
+        A cube seen on the path keeps blocking it while the robot holds it: picking an
+        obstacle up is not yet having put it aside (only Place achieves that).
+        """
         traj = self.state.trajectories.get(name)
         if traj is None:
-            return False
+            return frozenset({"(no path)"})
         self.prepare(name)
-        self.last_free[name] = not self.state.blockers(traj)
-        return self.last_free[name]
+        found = frozenset(self.state.blockers(traj))
+        traj.clearing.update(c for c in found if c in self.state.sim.cubes)
+        self.last_blockers[name] = found
+        return found
 
     def prepare(self, name: str, slack: float = CHECK_FROM) -> None:
         """Plan the trajectory again if it was planned from elsewhere or its target moved.
@@ -70,9 +107,14 @@ class Routes:
             samplers.approach_pose(state, traj.target, avoid_cubes=False)
         if not traj.stale(state.base, goal, state.layout(), slack) or goal is None:
             return
-        traj.path, traj.goal = self._plan(traj.target, goal), goal
-        traj.layout = state.layout()
+        path = self._plan(traj.target, goal)
         traj.plans += 1
+        if not path and traj.path and slack > DRIVE_FROM:
+            # Only checked, not driven: no path from exactly here (the base grazes a wall
+            # as it turns) keeps the last one, still stale, to plan again from the next spot.
+            return
+        traj.path, traj.goal = path, goal
+        traj.layout = state.layout()
 
     def _plan(self, target: str, goal: Pose2) -> tuple[Pose2, ...]:
         state = self.state

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from btplan.worlds.pybullet.geometry import clearance, distance, facing, grid, ring
 from btplan.worlds.pybullet.motion import Pose2
-from btplan.worlds.pybullet.paths import Trajectory
 from btplan.worlds.pybullet.scene import Point
 from btplan.worlds.pybullet.state import SceneState
 
@@ -61,29 +60,37 @@ def drop_spot(world: SceneState) -> Point | None:
     return min(spots, key=score, default=None)
 
 
-def aside_spot(world: SceneState, avoid: Trajectory | None) -> Point | None:
-    """A spot to put an obstacle: in an `aside` region if the scene has one, off the path."""
+def aside_spot(world: SceneState, paths: list[tuple[Pose2, ...]], pose: str | None = None
+               ) -> Point | None:
+    """A spot to put an obstacle: in an `aside` region if the scene has one, off `paths`.
+
+    `pose`: the name the spot is for, when an existing pose is sampled again (its own
+    old spot does not count as taken).
+    """
     regions = [r for r in world.scene.regions if r.aside]
     x0, x1, y0, y1 = world.scene.bounds
     inset = 0.1  # a cube put down by a real hand lands within a few millimetres of the spot
     areas = [((r.low[0] + inset, r.low[1] + inset), (r.high[0] - inset, r.high[1] - inset))
              for r in regions] or [((x0, y0), (x1, y1))]
-    keep = world.scene.robot_radius + world.scene.cube_size + 0.1
-    cubes = world.floor_cubes(world.held)
-    others = [r for r in world.scene.regions if not r.aside]
-    taken = list(world.poses.values())
     best: tuple[float, Point] | None = None
     for low, high in areas:
         for q in grid(low, high, GRID):
-            if any(r.contains(*q, margin=-0.2) for r in others):
-                continue
-            if avoid is not None and clearance(q, avoid.path) <= keep:
-                continue
-            if any(distance(q, t) < 0.3 for t in taken):
-                continue
-            if not world.sim.cube_fits(q[0], q[1], cubes, 0.15):
+            if not aside_fits(world, q, paths, pose):
                 continue
             score = round(distance(q, world.base), 3)
             if best is None or (score, q) < best:
                 best = (score, q)
     return None if best is None else best[1]
+
+
+def aside_fits(world: SceneState, q: Point, paths: list[tuple[Pose2, ...]],
+               pose: str | None = None) -> bool:
+    """Off every path in `paths`, away from other poses and regions, and free of cubes."""
+    keep = world.scene.robot_radius + world.scene.cube_size + 0.1
+    if any(r.contains(*q, margin=-0.2) for r in world.scene.regions if not r.aside):
+        return False
+    if any(clearance(q, path) <= keep for path in paths):
+        return False
+    if any(distance(q, t) < 0.3 for name, t in world.poses.items() if name != pose):
+        return False
+    return world.sim.cube_fits(q[0], q[1], world.floor_cubes(world.held), 0.15)

@@ -1,4 +1,4 @@
-"""The robot's skills: MoveTo, Pick, Place, Drop and ClearPath, each running over ticks.
+"""The robot's skills: MoveTo, Pick, Place and Drop, each running over ticks.
 
 A skill is a script (a generator of arm and base motions from arm.py) that the runner
 steps: on every tick it runs `substeps` physics steps (240 Hz), and the skill answers
@@ -117,7 +117,11 @@ def pick(state: SceneState, timings: Timings, cube: str) -> Script:
             reach = (above, at)
             break
     if reach is None:
-        return FAILURE  # out of reach, or every grasp collides
+        # Out of reach from here, or every grasp collides: not near after all, so that
+        # the tree drives up to it (MoveTo ends at a pose facing it).
+        state.out_of_reach[cube] = state.location(cube)
+        return FAILURE
+    state.out_of_reach.pop(cube, None)
     yield from arm.opened(state)
     if not (yield from arm.move_arm(state, timings, reach[0], cube)):
         return (yield from give_up(state, timings))
@@ -166,21 +170,27 @@ def put_down(state: SceneState, timings: Timings, cube: str, spot: Point | None,
     yield from arm.follow(state, [robot.joints(), at])
 
     def done() -> bool:
-        # Place achieves on(c, r); Drop and the put-down of ClearPath achieve an empty hand
-        # (and a path the cube no longer blocks): done as soon as the cube has left the hand.
+        # Place achieves on(c, l); Drop achieves an empty hand: done as soon as the cube
+        # has left the hand.
         if place is not None:
             return state.on(cube, place)
         return state.held != cube
 
     # Open, lift the hand clear, wait for the cube to settle: done as soon as the cube
     # rests where it was put (the postcondition), as for Pick. The next skill folds the arm.
-    for motion in (arm.opened(state), arm.follow(state, [robot.joints(), above]),
-                   arm.pause(0.5)):
-        for _ in motion:
-            if done():
-                state.released(cube)
-                return SUCCESS
-            yield
+    # Until then the cube still blocks the paths it blocked: only a Place that has ended
+    # has put it aside, and the tree must not halt this one as the hand opens.
+    state.releasing = cube
+    try:
+        for motion in (arm.opened(state), arm.follow(state, [robot.joints(), above]),
+                       arm.pause(0.5)):
+            for _ in motion:
+                if done():
+                    state.released(cube)
+                    return SUCCESS
+                yield
+    finally:
+        state.releasing = None
     state.released(cube)
     yield from arm.to_carry(state, timings)
     return FAILURE
@@ -211,6 +221,8 @@ def move_to(routes: Routes, timings: Timings, target: str, trajectory: str) -> S
                         return SUCCESS  # within reach: the postcondition holds
                     budget -= 1
                     yield
+            if index >= len(path) - 1:
+                state.out_of_reach.pop(target, None)  # at the approach pose now
             if state.is_near(target):
                 return SUCCESS
             if index >= len(path) - 1:
@@ -226,50 +238,3 @@ def move_to(routes: Routes, timings: Timings, target: str, trajectory: str) -> S
                     yield
     finally:
         traj.executing = False
-
-
-class ClearPath:
-    """Pick an obstacle, carry it to a pose off the path, put it down: one symbolic action.
-
-    Its effect (the path is free) only counts at the end, as for every action of the
-    domain, so while it runs the world hides its intermediate state from the
-    conditions: the cube being carried leaves the hand "empty" for the task, and the
-    robot stays "near" it.
-    """
-
-    def __init__(self, routes: Routes, timings: Timings, cube: str, pose: str) -> None:
-        self.routes, self.world, self.timings = routes, routes.state, timings
-        self.cube, self.pose = cube, pose
-        self.phase: Skill = Scripted(self.world, timings, pick(self.world, timings, cube))
-        self.stage = 0
-        self.world.clearing_now = cube
-
-    @property
-    def doing(self) -> str:
-        """What the robot is doing within the action, for the recorded frames."""
-        return ("picking", "carrying", "putting down")[self.stage]
-
-    def step(self) -> Status:
-        status = self.phase.step()
-        if status is RUNNING:
-            return RUNNING
-        if status is FAILURE or self.stage == 2:
-            return self.stop(status)
-        self.stage += 1
-        world = self.world
-        if self.stage == 1:
-            traj = self.routes.new_trajectory(self.pose)
-            self.phase = Scripted(world, self.timings, move_to(self.routes, self.timings, self.pose, traj))
-        else:
-            spot = world.poses[self.pose]
-            self.phase = Scripted(world, self.timings,
-                                  put_down(world, self.timings, self.cube, spot, None))
-        return RUNNING
-
-    def stop(self, status: Status) -> Status:
-        self.world.clearing_now = None
-        return status
-
-    def halt(self) -> None:
-        self.phase.halt()
-        self.world.clearing_now = None

@@ -33,9 +33,12 @@ class SceneState:
     def __init__(self, task: Task, scene: Scene, gui: bool = False) -> None:
         self.task, self.scene = task, scene
         self.cube_names = tuple(sorted(c.name for c in scene.cubes))
-        self.clearing_now: str | None = None  # the cube a running ClearPath carries
         self.handled = 0  # cubes the robot grasped or put down so far
         self.carried: set[str] = set()  # cubes in an external agent's hand, out of reach
+        self.releasing: str | None = None  # the cube a running put-down is letting go of
+        self.out_of_reach: dict[str, Point] = {}
+        """Cubes the arm failed to reach from where the base stands, and where they were:
+        not `near` until the robot drives up to them again (or they move)."""
         self.trajectories: dict[str, Trajectory] = {}
         self.poses: dict[str, Point] = {}
         self.check_objects()
@@ -67,6 +70,19 @@ class SceneState:
         """In the hand and off the floor: what Pick achieves and `holding(c)` means."""
         z = self.sim.cube_position(cube)[2]
         return z > self.scene.cube_size / 2 + LIFTED and self.held == cube
+
+    def in_hand(self, cube: str | None = None) -> str | None:
+        """The cube `holding` speaks of (`cube`, if given and in hand), or None.
+
+        A cube is in hand once lifted, and stays so while a Place or Drop lets go of it
+        and it settles: the action's effects count when it ends. Fingers closing on a cube
+        still on the floor do not hold it yet.
+        """
+        found = self.releasing
+        if found is None:
+            held = self.held
+            found = held if held is not None and self.lifted(held) else None
+        return found if cube is None or found == cube else None
 
     def check_objects(self) -> None:
         known = set(self.cube_names) | {r.name for r in self.scene.regions}
@@ -113,7 +129,11 @@ class SceneState:
     def is_near(self, name: str) -> bool:
         if name in self.sim.cubes and not self.present(name):
             return False
-        return distance(self.base, self.location(name)) <= self.scene.near
+        at = self.location(name)
+        missed = self.out_of_reach.get(name)
+        if missed is not None and distance(missed, at) < 0.02:
+            return False
+        return distance(self.base, at) <= self.scene.near
 
     def on(self, cube: str, place: str) -> bool:
         """`cube` came to rest inside region `place`, or at pose `place`."""
@@ -167,12 +187,12 @@ class SceneState:
         return any(self.sim.base_hits(q[0], q[1], [cube]) for q in rest[::2] + rest[-1:])
 
     def path_blockers(self, traj: Trajectory, start: int = 0) -> set[str]:
-        """Cubes on the floor on the rest of the path, and cleared obstacles still in hand."""
+        """Cubes on the floor on the rest of the path, and obstacles still in hand (or
+        being let go of by a Place that has not ended)."""
         held = self.held
         found = {c for c in self.floor_cubes(traj.target, held)
                  if self.on_path(c, traj.path, start)}
-        if held is not None and held in traj.clearing:
-            found.add(held)
+        found.update(c for c in (held, self.releasing) if c is not None and c in traj.clearing)
         return found
 
     def blockers(self, traj: Trajectory) -> set[str]:

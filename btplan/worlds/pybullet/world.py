@@ -21,7 +21,7 @@ from btplan.worlds.pybullet.conditions import Conditions, Key
 from btplan.worlds.pybullet.refine import refine_values
 from btplan.worlds.pybullet.routes import Routes
 from btplan.worlds.pybullet.scene import Scene
-from btplan.worlds.pybullet.skills import ClearPath, Scripted, Skill, move_to, pick, put_down
+from btplan.worlds.pybullet.skills import Scripted, Skill, move_to, pick, put_down
 from btplan.worlds.pybullet.state import SceneState
 
 Frame = Callable[[SceneState, str], None]
@@ -96,8 +96,6 @@ class PyBulletWorld:
         self.action_ticks += 1
         status = skill.step()
         self.current = f"{key[0]}({', '.join(key[1])})"
-        if isinstance(skill, ClearPath):
-            self.current += f": {skill.doing} {skill.cube}"
         if status is not RUNNING:
             del self.running[key]
             log = self.failed if status is FAILURE else self.executed
@@ -120,19 +118,17 @@ class PyBulletWorld:
             return Scripted(state, timings, script)  # type: ignore[arg-type]
 
         if name == "MoveTo" and len(args) == 2 and args[1] in state.trajectories:
+            self.routes.refresh_pose(args[0])
             return run(move_to(self.routes, timings, args[0], args[1]))
         if name == "Pick" and len(args) == 1:
             return run(pick(state, timings, args[0]))
         if name == "Place" and len(args) == 2:
+            self.routes.refresh_pose(args[1])
             spot = samplers.place_spot(state, args[1]) if state.is_near(args[1]) else None
             return run(put_down(state, timings, args[0], spot, args[1]))
-        if name == "ClearPath" and len(args) == 3 and args[1] in state.poses:
-            if state.held is not None or not state.is_near(args[0]):
-                return None
-            return ClearPath(self.routes, timings, args[0], args[1])
         if name == "Drop" and len(args) == 1:
             return run(put_down(state, timings, args[0], samplers.drop_spot(state), None))
-        if name in ("MoveTo", "Pick", "Place", "ClearPath", "Drop"):
+        if name in ("MoveTo", "Pick", "Place", "Drop"):
             return None
         raise WorldError(f"the PyBullet world has no skill for the action {name!r}")
 
@@ -150,7 +146,7 @@ class PyBulletWorld:
 
     def stats(self) -> dict[str, float]:
         """Simulated time and OMPL effort so far, for the run's closing note."""
-        moves = sum(1 for a in self.started if a.name in ("MoveTo", "ClearPath"))
+        moves = sum(1 for a in self.started if a.name == "MoveTo")
         seconds = self.routes.plan_seconds
         total = sum(seconds)
         return {
@@ -161,6 +157,7 @@ class PyBulletWorld:
             "ompl_ms_per_solve": round(1000 * total / max(1, len(seconds)), 2),
             "ompl_ms_max": round(1000 * max(seconds, default=0.0), 2),
             "moves_started": moves,
+            "poses_refined_again": self.routes.refreshed,
             "ompl_ms_per_move": round(1000 * total / max(1, moves), 2),
             "physics_steps": self.state.sim.steps,
             "physics_seconds": round(self.state.sim.physics_seconds, 3),

@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from btplan.bt import Action, Condition, Fallback, Node, Sequence
+from btplan.bt.decorators import Inverter
 from btplan.lang import load
 from btplan.model import Task
 
@@ -53,7 +54,8 @@ def figure7_tree(to_green: str, to_goal: str) -> Node:
     """The paper's Figure 7 (Example 1) with the world's trajectories as arguments."""
     def move(target: str, traj: str) -> Node:
         return Fallback([Condition("near", (target,)),
-                         Sequence([Condition("free", (traj,)), Action("MoveTo", (target, traj))])])
+                         Sequence([Inverter(Condition("blocks", ("_", traj))),
+                                   Action("MoveTo", (target, traj))])])
 
     holding = Fallback([Condition("holding", ("green",)),
                         Sequence([Condition("hand_empty"), move("green", to_green),

@@ -15,7 +15,7 @@ from btplan.worlds.pybullet.geometry import clearance, distance
 
 TASK = youbot_task()
 MOVE = TASK.domain.action_map["MoveTo"]
-CLEAR = TASK.domain.action_map["ClearPath"]
+PLACE = TASK.domain.action_map["Place"]
 
 
 def param(template: object, name: str) -> object:
@@ -58,7 +58,7 @@ def test_a_refined_trajectory_is_a_collision_free_ompl_path_to_the_target(
     assert distance(traj.path[-1], youbot.state.location("green")) <= youbot.scene.near
     walls_and_cubes = youbot.state.floor_cubes("green")
     assert all(youbot.state.sim.base_free(x, y, walls_and_cubes) for x, y, _ in traj.path)
-    assert youbot.check(("free", (name,))) and youbot.check(("route", ("green", name)))
+    assert not youbot.check(("blocks", ("_", name))) and youbot.check(("route", ("green", name)))
     assert youbot.routes.plan_seconds and youbot.routes.plan_seconds[-1] < 5
 
 
@@ -66,30 +66,51 @@ def test_the_same_question_gets_the_same_trajectory(youbot: PyBulletWorld) -> No
     assert trajectory_to(youbot, "goal") == trajectory_to(youbot, "goal")
 
 
-def test_a_cube_in_the_doorway_blocks_the_only_way_and_refinement_names_it(
+def test_a_cube_in_the_doorway_blocks_the_only_way_and_a_pose_aside_is_sampled(
         youbot: PyBulletWorld) -> None:
-    to_goal = trajectory_to(youbot, "goal")
-    assert not youbot.check(("free", (to_goal,)))
-    binding = {"t": to_goal}
-    assert youbot.refine(CLEAR, binding, param(CLEAR, "c")) == ["blue"]  # type: ignore[arg-type]
-    (pose,) = youbot.refine(CLEAR, {**binding, "c": "blue"}, param(CLEAR, "p"))  # type: ignore[arg-type]
+    to_green, to_goal = trajectory_to(youbot, "green"), trajectory_to(youbot, "goal")
+    assert youbot.check(("blocks", ("_", to_goal))) and youbot.check(("blocks", ("blue", to_goal)))
+    assert Atom("blocks", ("blue", to_goal)) in youbot.facts()
+    # Place's target is refined when the condition does not fix it: a pose off every path.
+    (pose,) = youbot.refine(PLACE, {"c": "blue"}, param(PLACE, "l"))  # type: ignore[arg-type]
     spot = youbot.state.poses[pose]
     storage = youbot.scene.region("storage")
     assert storage is not None and storage.contains(*spot)
     keep = youbot.scene.robot_radius + youbot.scene.cube_size
-    assert clearance(spot, youbot.state.trajectories[to_goal].path) > keep
+    for name in (to_green, to_goal):
+        assert clearance(spot, youbot.state.trajectories[name].path) > keep
 
 
-def test_free_is_checked_again_every_time_so_a_moved_cube_blocks_a_path(
+def test_a_pose_gone_stale_is_sampled_again_under_its_name(youbot: PyBulletWorld) -> None:
+    """RefineActions again: a pose another cube now occupies gets a fresh spot."""
+    (pose,) = youbot.refine(PLACE, {"c": "blue"}, param(PLACE, "l"))  # type: ignore[arg-type]
+    first = youbot.state.poses[pose]
+    youbot.state.put("red", first)  # someone put red exactly there
+    assert youbot.refine(PLACE, {"c": "blue"}, param(PLACE, "l")) == [pose]  # same name
+    youbot.routes.refresh_pose(pose)
+    fresh = youbot.state.poses[pose]
+    assert distance(fresh, first) > 0.1 and youbot.routes.refreshed == 1
+    storage = youbot.scene.region("storage")
+    assert storage is not None and storage.contains(*fresh)
+    youbot.routes.refresh_pose(pose)  # still good: kept
+    assert youbot.state.poses[pose] == fresh and youbot.routes.refreshed == 1
+    # A path planned since that runs over the pose makes it stale too.
+    to_pose = trajectory_to(youbot, pose)
+    assert youbot.state.trajectories[to_pose].target == pose  # its own path does not count
+    youbot.routes.refresh_pose(pose)
+    assert youbot.state.poses[pose] == fresh
+
+
+def test_blocks_is_checked_again_every_time_so_a_moved_cube_blocks_a_path(
         room: PyBulletWorld) -> None:
     name = trajectory_to(room, "green")
     path = room.state.trajectories[name].path
-    assert room.check(("free", (name,)))
+    assert not room.check(("blocks", ("_", name)))
     middle = path[len(path) // 2]
     room.state.put("red", (middle[0], middle[1]))
-    assert not room.check(("free", (name,)))
+    assert room.check(("blocks", ("_", name))) and room.check(("blocks", ("red", name)))
     room.state.put("red", None)
-    assert room.check(("free", (name,)))
+    assert not room.check(("blocks", ("_", name)))
 
 
 def test_the_figure7_tree_runs_the_skills_over_many_ticks(room: PyBulletWorld) -> None:
@@ -194,7 +215,7 @@ def test_a_cube_put_on_the_path_ahead_stops_a_running_move(room: PyBulletWorld) 
     path = room.state.trajectories[name].path
     ahead = path[int(len(path) * 0.6)]
     room.state.put("red", (ahead[0], ahead[1]))
-    assert not room.check(("free", (name,)))
+    assert room.check(("blocks", ("red", name)))
     assert room.step(key) is FAILURE
     assert [a.key for a in room.failed] == [key]
 
