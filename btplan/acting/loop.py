@@ -52,9 +52,17 @@ from btplan.planner.expand import (
 )
 from btplan.planner.lookahead import closest_first, keep_reachable, needed_later
 from btplan.planner.protect import white_knights
+from btplan.planner.rescue import insert_plan, plan_alternatives, rescue_targets, search_goal
 
 ALL = 1 << 30
 """A limit on achievers that keeps them all."""
+
+STUCK_EXPANSIONS = 8
+"""Expansions of one condition after which it counts as stuck (for `search_stuck`)."""
+
+ROUND_EXPANSIONS = 40
+"""Expansions of one condition after which the attempt stops: it goes round, and the
+next strategy (or the last-resort search) is better spent time than the budget."""
 
 BACKTRACKS = 2
 """Further batches of achievers tried when the first has no conflict-free place."""
@@ -132,6 +140,13 @@ class BlendedLoop:
         self._last_state: frozenset[Atom] | None = None
         self._stalls = 0
         self.premature_successes = 0
+        self.searches = 0
+        """Stuck conditions planned by the last-resort search (`search_stuck`)."""
+        self.deadline: float | None = None
+        """A time.perf_counter() value the last-resort search must not run past."""
+        self._searched: set[tuple[GroundLiteral, frozenset[Atom]]] = set()
+        self._rescued: set[GroundLiteral] = set()
+        self._tally: Counter[GroundLiteral] = Counter()
         check = goal_check(self.tree)
         if check is not None:  # the final re-check of the goals is never expanded
             self._expanded.update(check.children)
@@ -185,22 +200,36 @@ class BlendedLoop:
     def _expand(self) -> Expansion | None:
         state = self.world.facts()
         missing: list[GroundLiteral] = []
+        stuck: list[Node] = []
         failed = failed_conditions(self.tree, self._expanded)
         if self.options.closest_first and len(failed) > 1:
             failed = closest_first(failed, self.index.relaxed, state)
         for node in failed:
             literal = literal_of(node)
             assert literal is not None
+            if self._tally[literal] >= STUCK_EXPANSIONS:
+                searched = self._search(node)  # expanded again and again: going round
+                if searched is not None:
+                    return searched
+                if self._tally[literal] >= ROUND_EXPANSIONS and self.options.refine_more:
+                    raise NoProgressError(
+                        f"{literal} was expanded {self._tally[literal]} times: the tree goes "
+                        f"round (expanded most often: {self.most_expanded()})")
             achievers, spare = self._achievers(node, literal, state)
             self._expanded.add(node)
             if not achievers:
                 self._dead.add(node)
                 missing.append(literal)
+                stuck.append(node)
                 continue
             return self._apply(node, literal, achievers, spare)
         more = self._reexpand(state) if self.options.refine_more else None
         if more is not None:
             return more
+        for node in stuck:
+            searched = self._search(node)
+            if searched is not None:
+                return searched
         if missing:
             raise NoAchieverError(self._no_achiever_reason(missing))
         return None
@@ -330,6 +359,7 @@ class BlendedLoop:
     ) -> Expansion:
         expansion = Expansion(self.ticks, str(literal), [str(a) for a in achievers], conflicts,
                               moves)
+        self._tally[literal] += 1
         self.expansions.append(expansion)
         return expansion
 
@@ -370,7 +400,51 @@ class BlendedLoop:
                 continue
             return self._record(literal, batch, len(resolution.conflicts), resolution.moves)
         assert first is not None
+        searched = self._search(node)
+        if searched is not None:
+            return searched
         raise first
+
+    def _search(self, node: Node) -> Expansion | None:
+        """The last resort (`search_stuck`): plan a stuck condition by search.
+
+        btplan/planner/rescue.py says what is searched for and where the plan goes;
+        its checks are never expanded. Each condition is searched for at most once per
+        state; once a condition under a goal was rescued, the next one stuck under
+        that goal has the goal itself searched for: the part already planned by search
+        did not fit.
+        """
+        if not self.options.search_stuck:
+            return None
+        state = self.world.facts()
+        mutexes = self.index.mutexes if self.options.mutexes else None
+        targets = rescue_targets(node)
+        if not targets:
+            return None
+        top = targets[-1][1]
+        if top in self._rescued:
+            targets = targets[-1:]  # stuck again under this goal: plan the goal as a whole
+        self._rescued.add(top)
+        for target, literal in targets:
+            if (literal, state) in self._searched or literal.holds(state):
+                continue
+            self._searched.add((literal, state))
+            goal = search_goal(target, literal, state, mutexes)
+            if goal is None:
+                continue
+            steps = self.index.subgoal_search.search(state, goal, deadline=self.deadline,
+                                                     keep=goal[1:])
+            if not steps:
+                continue
+            for action in steps:
+                self.grounding[action.key] = action
+            alternatives, checks = plan_alternatives(goal, steps, self.task)
+            insert_plan(self.tree, target, alternatives)
+            self._expanded.update([*checks, node])
+            self._dead.update([*checks, node])
+            self.searches += 1
+            return self._record(literal, steps, 0, 0)
+        return None
 
     def _protect(self, subtree: Fallback) -> None:
         """Check, before each new achiever, what keeps the other goals reachable."""

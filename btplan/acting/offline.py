@@ -48,6 +48,8 @@ class PlanStats:
     rounds: int
     seconds: float
     premature_successes: int = 0
+    searches: int = 0
+    """Stuck conditions planned by the last-resort search and inserted as subtrees."""
     cost: float = 0.0
     """The executed plan's cost: the sum of its actions' costs (its length in unit cost)."""
 
@@ -72,8 +74,13 @@ def plan(
     options: PlannerOptions | None = None,
     on_expansion: Callable[[BehaviorTree, Expansion], None] | None = None,
     stop: Callable[[], bool] | None = None,
+    last_resort: bool = True,
 ) -> PlanResult:
     """Backchain a BT for `task` by planning and acting in the symbolic world.
+
+    Without explicit `options`, the fallback strategies run without the last-resort
+    search, and, with `last_resort`, the default options with it come last (a stuck
+    condition is then planned by search). Explicit options run as they are.
 
     Raises a PlanningError (NoAchieverError, UnresolvableConflictError,
     NoProgressError, BudgetExceededError) with a reason when no tree is found, and
@@ -84,7 +91,11 @@ def plan(
         opts = replace(opts, max_expansions=max_expansions)
     started = time.perf_counter()
     deadline = None if timeout is None else started + timeout
-    strategies = [opts] if options is not None else fallback_strategies(opts)
+    if options is not None:
+        strategies = [opts]
+    else:
+        strategies = fallback_strategies(replace(opts, search_stuck=False))
+        strategies += [opts] if last_resort else []
     first_error: PlanningError | None = None
     found: PlanResult | None = None
     models = AchieverIndex(task)  # the relaxed model and mutexes, built once for all
@@ -149,6 +160,7 @@ def _attempt(
     groundings: dict[LeafKey, GroundAction] = {}
     world = SymbolicWorld(task, seed=seed, groundings=groundings)
     loop = BlendedLoop(task, world, opts, like=models)
+    loop.deadline = deadline
     ticks_left = max_ticks
 
     def watch(report: TickReport) -> None:
@@ -214,5 +226,6 @@ def _stats(
         rounds=rounds,
         seconds=seconds,
         premature_successes=premature,
+        searches=loop.searches,
         cost=sum(a.cost for a in world.executed),
     )

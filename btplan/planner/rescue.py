@@ -1,0 +1,111 @@
+"""Where the last-resort search plans, and how its plan becomes part of the tree.
+
+A condition stuck in its place (no conflict-free place, every achiever circular) is
+searched for while what the earlier siblings of its Sequence ancestors hold stays
+true at every step: those siblings are checked again on every tick, and a plan that
+undid one would send the tree back to them. When that cannot be (the condition excludes
+something held before it) or no plan is found, the condition an enclosing Fallback
+pursues is tried instead, one level up at a time: the stuck part is then planned as a
+whole. The plan becomes a teleo-reactive subtree (`plan_alternatives`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from btplan.bt import BehaviorTree, Fallback, Node
+from btplan.bt import Sequence as SequenceNode
+from btplan.model import Atom, GroundAction, GroundLiteral, Task
+from btplan.planner.conflicts import held_before
+from btplan.planner.expand import action_node, condition_node, literal_of
+from btplan.planner.mutex import Mutexes
+
+
+def rescue_targets(node: Node) -> list[tuple[Node, GroundLiteral]]:
+    """The stuck condition, then the conditions its enclosing Fallbacks pursue, inner first.
+
+    Each comes with the node the plan replaces or extends: the condition itself, or
+    the Fallback whose first child is the pursued condition.
+    """
+    own = literal_of(node)
+    targets: list[tuple[Node, GroundLiteral]] = [] if own is None else [(node, own)]
+    child, parent = node, node.parent
+    while parent is not None:
+        if isinstance(parent, Fallback) and parent.children and child is not parent.children[0]:
+            pursued = literal_of(parent.children[0])
+            if pursued is not None:
+                targets.append((parent, pursued))
+        child, parent = parent, parent.parent
+    return targets
+
+
+def search_goal(
+    target: Node, literal: GroundLiteral, state: frozenset[Atom], mutexes: Mutexes | None
+) -> list[GroundLiteral] | None:
+    """`literal` and what is held before `target` and holds now; None when they exclude
+    each other (a plan for the literal would then undo earlier work)."""
+    goal = [literal]
+    for held in held_before(target):
+        if not held.holds(state) or held in goal:
+            continue
+        if mutexes is not None and any(mutexes.exclusive(held, g) for g in goal):
+            return None
+        goal.append(held)
+    return goal
+
+
+def regress(goal: Sequence[GroundLiteral], plan: Sequence[GroundAction]) -> list[list[GroundLiteral]]:
+    """For each step i, what must hold before it for steps i.. to reach `goal`.
+
+    Regression through an action drops what it makes true and adds its preconditions.
+    """
+    needed = list(dict.fromkeys(goal))
+    out: list[list[GroundLiteral]] = []
+    for action in reversed(plan):
+        kept = [g for g in needed if not _achieves(action, g)]
+        needed = list(dict.fromkeys([*action.preconditions, *kept]))
+        out.append(needed)
+    out.reverse()
+    return out
+
+
+def _achieves(action: GroundAction, literal: GroundLiteral) -> bool:
+    if literal.positive:
+        return literal.atom in action.add
+    return action.deletes(literal.atom)
+
+
+def plan_alternatives(
+    goal: Sequence[GroundLiteral], plan: Sequence[GroundAction], task: Task
+) -> tuple[list[Node], list[Node]]:
+    """Sequence(g_n, a_n), ..., Sequence(g_1, a_1) for a plan a_1..a_n, and their checks.
+
+    g_i is the regression of `goal` through a_i..a_n. Behind the goal condition in a
+    Fallback, the last step whose regressed condition holds runs, and each tick moves
+    at least one step on (a teleo-reactive program): the plan still works if the
+    world skips steps. The checks are returned so the loop never expands them (the
+    plan achieves them).
+    """
+    checks: list[Node] = []
+    alternatives: list[Node] = []
+    for needed, action in reversed(list(zip(regress(goal, plan), plan, strict=True))):
+        step = [condition_node(lit, task) for lit in needed]
+        checks += step
+        alternatives.append(SequenceNode([*step, action_node(action)]))
+    return alternatives, checks
+
+
+def insert_plan(tree: BehaviorTree, target: Node, alternatives: list[Node]) -> None:
+    """Put a plan's alternatives in the tree: in a stuck condition's place, as a new
+    atomic BT, or first among the achievers of a Fallback that pursues a condition."""
+    if isinstance(target, Fallback):
+        for offset, alternative in enumerate(alternatives, start=1):
+            target.insert(offset, alternative)
+        return
+    parent = target.parent
+    index = parent.remove(target) if parent is not None else 0
+    subtree = Fallback([target, *alternatives])
+    if parent is None:
+        tree.root = subtree
+    else:
+        parent.insert(index, subtree)
