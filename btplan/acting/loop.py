@@ -52,7 +52,14 @@ from btplan.planner.expand import (
 )
 from btplan.planner.lookahead import closest_first, keep_reachable, needed_later
 from btplan.planner.protect import white_knights
-from btplan.planner.rescue import insert_plan, plan_alternatives, rescue_targets, search_goal
+from btplan.planner.rescue import (
+    insert_plan,
+    merge_plan,
+    merge_slots,
+    plan_alternatives,
+    rescue_targets,
+    search_goal,
+)
 
 ALL = 1 << 30
 """A limit on achievers that keeps them all."""
@@ -144,7 +151,7 @@ class BlendedLoop:
         """Stuck conditions planned by the last-resort search (`search_stuck`)."""
         self.deadline: float | None = None
         """A time.perf_counter() value the last-resort search must not run past."""
-        self._searched: set[tuple[GroundLiteral, frozenset[Atom]]] = set()
+        self._searched: set[tuple[tuple[GroundLiteral, ...], frozenset[Atom]]] = set()
         self._rescued: set[GroundLiteral] = set()
         self._tally: Counter[GroundLiteral] = Counter()
         check = goal_check(self.tree)
@@ -426,12 +433,10 @@ class BlendedLoop:
             targets = targets[-1:]  # stuck again under this goal: plan the goal as a whole
         self._rescued.add(top)
         for target, literal in targets:
-            if (literal, state) in self._searched or literal.holds(state):
-                continue
-            self._searched.add((literal, state))
             goal = search_goal(target, literal, state, mutexes)
-            if goal is None:
+            if goal is None or literal.holds(state) or (tuple(goal), state) in self._searched:
                 continue
+            self._searched.add((tuple(goal), state))
             steps = self.index.subgoal_search.search(state, goal, deadline=self.deadline,
                                                      keep=goal[1:])
             if not steps:
@@ -444,6 +449,25 @@ class BlendedLoop:
             self._dead.update([*checks, node])
             self.searches += 1
             return self._record(literal, steps, 0, 0)
+        return self._search_merged(node, state)
+
+    def _search_merged(self, node: Node, state: frozenset[Atom]) -> Expansion | None:
+        """Plan the stuck condition with its earlier siblings (rescue.merge_plan)."""
+        for sequence, index, goal in merge_slots(node):
+            if all(g.holds(state) for g in goal) or (tuple(goal), state) in self._searched:
+                continue
+            self._searched.add((tuple(goal), state))
+            steps = self.index.subgoal_search.search(state, goal, deadline=self.deadline)
+            if not steps:
+                continue
+            for action in steps:
+                self.grounding[action.key] = action
+            alternatives, checks = plan_alternatives(goal, steps, self.task)
+            checks += merge_plan(sequence, index, goal, alternatives, self.task)
+            self._expanded.update([*checks, node])
+            self._dead.update([*checks, node])
+            self.searches += 1
+            return self._record(goal[0], steps, 0, 0)
         return None
 
     def _protect(self, subtree: Fallback) -> None:

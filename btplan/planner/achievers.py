@@ -119,7 +119,7 @@ class AchieverIndex:
                 action = self.ground(template, args)
                 if _makes_true(action, condition) and action.key not in found:
                     found[action.key] = action
-        candidates = found.values()
+        candidates = list(found.values())
         if self.options.mutexes:
             candidates = [a for a in candidates if not self._impossible(a)]
         scored = sorted((self._rank(a, state), a) for a in candidates)

@@ -7,6 +7,10 @@ undid one would send the tree back to them. When that cannot be (the condition e
 something held before it) or no plan is found, the condition an enclosing Fallback
 pursues is tried instead, one level up at a time: the stuck part is then planned as a
 whole. The plan becomes a teleo-reactive subtree (`plan_alternatives`).
+
+When no such plan exists (Sussman's anomaly: on(b, c) cannot be made true while
+on(a, b) stays true), the condition and the earlier siblings are planned together,
+undoing earlier work as needed, and the earlier siblings are wrapped (`merge_plan`).
 """
 
 from __future__ import annotations
@@ -16,7 +20,7 @@ from collections.abc import Sequence
 from btplan.bt import BehaviorTree, Fallback, Node
 from btplan.bt import Sequence as SequenceNode
 from btplan.model import Atom, GroundAction, GroundLiteral, Task
-from btplan.planner.conflicts import held_before
+from btplan.planner.conflicts import guarantees, held_before, sequence_slots
 from btplan.planner.expand import action_node, condition_node, literal_of
 from btplan.planner.mutex import Mutexes
 
@@ -109,3 +113,40 @@ def insert_plan(tree: BehaviorTree, target: Node, alternatives: list[Node]) -> N
         tree.root = subtree
     else:
         parent.insert(index, subtree)
+
+
+def merge_slots(node: Node) -> list[tuple[SequenceNode, int, list[GroundLiteral]]]:
+    """(Sequence ancestor, index, what its children up to that index guarantee), inner first.
+
+    Only slots with earlier siblings count: they are what a plan may have to undo.
+    """
+    slots = []
+    stuck = literal_of(node)
+    for sequence, index in sequence_slots(node):
+        if index == 0:
+            continue
+        own = guarantees(sequence.children[index]) or ([] if stuck is None else [stuck])
+        earlier = [g for child in sequence.children[:index] for g in guarantees(child)]
+        slots.append((sequence, index, list(dict.fromkeys([*own, *earlier]))))
+    return slots
+
+
+def merge_plan(
+    sequence: SequenceNode, index: int, goal: Sequence[GroundLiteral],
+    alternatives: list[Node], task: Task,
+) -> list[Node]:
+    """Fallback(all of `goal`, plan steps..., the earlier siblings as they were).
+
+    It takes the place of the children before `index`. From the state the plan was
+    found in, the plan runs (it may undo what the earlier siblings achieved) and
+    leaves every goal true; from an earlier state, such as the initial one, the
+    earlier siblings run as before and lead back to where the plan applies. Returns
+    the new condition leaves, which the loop must not expand.
+    """
+    earlier = [sequence.children[i] for i in range(index)]
+    for child in earlier:
+        sequence.remove(child)
+    checks = [condition_node(g, task) for g in goal]
+    before: Node = earlier[0] if len(earlier) == 1 else SequenceNode(earlier)
+    sequence.insert(0, Fallback([SequenceNode(list(checks)), *alternatives, before]))
+    return checks

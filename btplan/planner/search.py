@@ -83,8 +83,7 @@ class SubgoalSearch:
         for i in self._free:
             self._fire(i, reached, frontier, missing)
         while frontier and missing:
-            atom = frontier.popleft()
-            for i in self._by_pre.get(atom, ()):
+            for i in self._by_pre.get(frontier.popleft(), ()):
                 waiting[i] -= 1
                 if waiting[i] == 0:
                     self._fire(i, reached, frontier, missing)
@@ -94,11 +93,11 @@ class SubgoalSearch:
         todo = list(targets)
         done: set[int] = set()
         while todo:
-            atom = todo.pop()
-            if atom in done:
+            needed = todo.pop()
+            if needed in done:
                 continue
-            done.add(atom)
-            supporter = reached[atom]
+            done.add(needed)
+            supporter = reached[needed]
             if supporter is None or supporter in chosen:
                 continue
             chosen.add(supporter)
