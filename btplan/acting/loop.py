@@ -52,14 +52,8 @@ from btplan.planner.expand import (
 )
 from btplan.planner.lookahead import closest_first, keep_reachable, needed_later
 from btplan.planner.protect import white_knights
-from btplan.planner.rescue import (
-    insert_plan,
-    merge_plan,
-    merge_slots,
-    plan_alternatives,
-    rescue_targets,
-    search_goal,
-)
+from btplan.planner.agenda import goal_agenda
+from btplan.planner.rescue import Rescuer
 
 ALL = 1 << 30
 """A limit on achievers that keeps them all."""
@@ -135,8 +129,12 @@ class BlendedLoop:
         self.task = task
         self.world = world
         self.options = options or PlannerOptions()
-        self.tree = initial_tree(task)
         self.index = AchieverIndex(task, self.options, like)
+        order = None
+        if self.options.goal_agenda and self.options.mutexes and len(task.goal_literals) > 1:
+            order = goal_agenda(task.goal_literals, self.index.relaxed.producers,
+                                self.index.mutexes)
+        self.tree = initial_tree(task, order)
         self.grounding: dict[LeafKey, GroundAction] = {}
         self.expansions: list[Expansion] = []
         self.ticks = 0
@@ -151,8 +149,7 @@ class BlendedLoop:
         """Stuck conditions planned by the last-resort search (`search_stuck`)."""
         self.deadline: float | None = None
         """A time.perf_counter() value the last-resort search must not run past."""
-        self._searched: set[tuple[tuple[GroundLiteral, ...], frozenset[Atom]]] = set()
-        self._rescued: set[GroundLiteral] = set()
+        self._rescuer: Rescuer | None = None
         self._tally: Counter[GroundLiteral] = Counter()
         check = goal_check(self.tree)
         if check is not None:  # the final re-check of the goals is never expanded
@@ -416,59 +413,23 @@ class BlendedLoop:
         """The last resort (`search_stuck`): plan a stuck condition by search.
 
         btplan/planner/rescue.py says what is searched for and where the plan goes;
-        its checks are never expanded. Each condition is searched for at most once per
-        state; once a condition under a goal was rescued, the next one stuck under
-        that goal has the goal itself searched for: the part already planned by search
-        did not fit.
+        the checks it adds are never expanded.
         """
         if not self.options.search_stuck:
             return None
-        state = self.world.facts()
-        mutexes = self.index.mutexes if self.options.mutexes else None
-        targets = rescue_targets(node)
-        if not targets:
+        if self._rescuer is None:
+            mutexes = self.index.mutexes if self.options.mutexes else None
+            self._rescuer = Rescuer(self.task, self.index.subgoal_search, mutexes)
+        rescued = self._rescuer.rescue(self.tree, node, self.world.facts(), self.deadline)
+        if rescued is None:
             return None
-        top = targets[-1][1]
-        if top in self._rescued:
-            targets = targets[-1:]  # stuck again under this goal: plan the goal as a whole
-        self._rescued.add(top)
-        for target, literal in targets:
-            goal = search_goal(target, literal, state, mutexes)
-            if goal is None or literal.holds(state) or (tuple(goal), state) in self._searched:
-                continue
-            self._searched.add((tuple(goal), state))
-            steps = self.index.subgoal_search.search(state, goal, deadline=self.deadline,
-                                                     keep=goal[1:])
-            if not steps:
-                continue
-            for action in steps:
-                self.grounding[action.key] = action
-            alternatives, checks = plan_alternatives(goal, steps, self.task)
-            insert_plan(self.tree, target, alternatives)
-            self._expanded.update([*checks, node])
-            self._dead.update([*checks, node])
-            self.searches += 1
-            return self._record(literal, steps, 0, 0)
-        return self._search_merged(node, state)
-
-    def _search_merged(self, node: Node, state: frozenset[Atom]) -> Expansion | None:
-        """Plan the stuck condition with its earlier siblings (rescue.merge_plan)."""
-        for sequence, index, goal in merge_slots(node):
-            if all(g.holds(state) for g in goal) or (tuple(goal), state) in self._searched:
-                continue
-            self._searched.add((tuple(goal), state))
-            steps = self.index.subgoal_search.search(state, goal, deadline=self.deadline)
-            if not steps:
-                continue
-            for action in steps:
-                self.grounding[action.key] = action
-            alternatives, checks = plan_alternatives(goal, steps, self.task)
-            checks += merge_plan(sequence, index, goal, alternatives, self.task)
-            self._expanded.update([*checks, node])
-            self._dead.update([*checks, node])
-            self.searches += 1
-            return self._record(goal[0], steps, 0, 0)
-        return None
+        literal, steps, checks = rescued
+        for action in steps:
+            self.grounding[action.key] = action
+        self._expanded.update([*checks, node])
+        self._dead.update([*checks, node])
+        self.searches += 1
+        return self._record(literal, steps, 0, 0)
 
     def _protect(self, subtree: Fallback) -> None:
         """Check, before each new achiever, what keeps the other goals reachable."""

@@ -23,6 +23,7 @@ from btplan.model import Atom, GroundAction, GroundLiteral, Task
 from btplan.planner.conflicts import guarantees, held_before, sequence_slots
 from btplan.planner.expand import action_node, condition_node, literal_of
 from btplan.planner.mutex import Mutexes
+from btplan.planner.search import SubgoalSearch
 
 
 def rescue_targets(node: Node) -> list[tuple[Node, GroundLiteral]]:
@@ -150,3 +151,64 @@ def merge_plan(
     before: Node = earlier[0] if len(earlier) == 1 else SequenceNode(earlier)
     sequence.insert(0, Fallback([SequenceNode(list(checks)), *alternatives, before]))
     return checks
+
+
+Rescued = tuple[GroundLiteral, list[GroundAction], list[Node]]
+"""What a rescue planned for, the plan, and the condition leaves it added."""
+
+
+class Rescuer:
+    """Remembers what was searched for in one planning attempt, and plans stuck conditions.
+
+    Each goal is searched for at most once per state. Once a condition under a
+    top-level goal was rescued, the next one stuck under that goal has the goal itself
+    searched for: the part already planned by search did not fit.
+    """
+
+    def __init__(self, task: Task, engine: SubgoalSearch, mutexes: Mutexes | None) -> None:
+        self.task = task
+        self.engine = engine
+        self.mutexes = mutexes
+        self._searched: set[tuple[tuple[GroundLiteral, ...], frozenset[Atom]]] = set()
+        self._rescued: set[GroundLiteral] = set()
+
+    def rescue(self, tree: BehaviorTree, node: Node, state: frozenset[Atom],
+               deadline: float | None) -> Rescued | None:
+        """Plan `node`'s condition (or one pursued above it) and put the plan in `tree`."""
+        targets = rescue_targets(node)
+        if not targets:
+            return None
+        top = targets[-1][1]
+        if top in self._rescued:
+            targets = targets[-1:]  # stuck again under this goal: plan the goal as a whole
+        self._rescued.add(top)
+        for target, literal in targets:
+            goal = search_goal(target, literal, state, self.mutexes)
+            if goal is None or literal.holds(state) or not self._fresh(goal, state):
+                continue
+            steps = self.engine.search(state, goal, deadline=deadline, keep=goal[1:])
+            if steps:
+                alternatives, checks = plan_alternatives(goal, steps, self.task)
+                insert_plan(tree, target, alternatives)
+                return literal, steps, checks
+        return self._merged(node, state, deadline)
+
+    def _merged(self, node: Node, state: frozenset[Atom], deadline: float | None) -> Rescued | None:
+        """Plan the stuck condition with its earlier siblings (`merge_plan`)."""
+        for sequence, index, goal in merge_slots(node):
+            if all(g.holds(state) for g in goal) or not self._fresh(goal, state):
+                continue
+            steps = self.engine.search(state, goal, deadline=deadline)
+            if steps:
+                alternatives, checks = plan_alternatives(goal, steps, self.task)
+                checks += merge_plan(sequence, index, goal, alternatives, self.task)
+                return goal[0], steps, checks
+        return None
+
+    def _fresh(self, goal: list[GroundLiteral], state: frozenset[Atom]) -> bool:
+        """Whether `goal` was not searched for from `state` yet (and note that it is now)."""
+        key = (tuple(goal), state)
+        if key in self._searched:
+            return False
+        self._searched.add(key)
+        return True
