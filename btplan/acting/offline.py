@@ -79,8 +79,9 @@ def plan(
     """Backchain a BT for `task` by planning and acting in the symbolic world.
 
     Without explicit `options`, the fallback strategies run without the last-resort
-    search, and, with `last_resort`, the default options with it come last (a stuck
-    condition is then planned by search). Explicit options run as they are.
+    search; with `last_resort`, the default options with it come second, right after
+    the default options without it (a stuck condition is then planned by search).
+    Explicit options run as they are.
 
     Raises a PlanningError (NoAchieverError, UnresolvableConflictError,
     NoProgressError, BudgetExceededError) with a reason when no tree is found, and
@@ -95,7 +96,8 @@ def plan(
         strategies = [opts]
     else:
         strategies = fallback_strategies(replace(opts, search_stuck=False))
-        strategies += [opts] if last_resort else []
+        if last_resort:  # right after the default: later strategies may use up the time
+            strategies.insert(1, opts)
     first_error: PlanningError | None = None
     found: PlanResult | None = None
     models = AchieverIndex(task)  # the relaxed model and mutexes, built once for all
