@@ -139,8 +139,10 @@ def test_achievers_whose_preconditions_exclude_each_other_are_dropped(tmp_path: 
 
 def test_sussman_is_rescued_by_search_where_backchaining_alone_stops() -> None:
     task = load(str(DOMAINS / "planner_sussman.bt"))
-    # Without goal reordering and backtracking, backchaining finds no conflict-free place.
-    alone = PlannerOptions(reorder_goals=False, backtrack=False, search_stuck=False)
+    # In the listed goal order, without goal reordering and backtracking, backchaining
+    # finds no conflict-free place.
+    alone = PlannerOptions(reorder_goals=False, backtrack=False, search_stuck=False,
+                           goal_agenda=False)
     with pytest.raises(PlanningError, match="no conflict-free place"):
         plan(task, options=alone)
     rescued = plan(task, options=replace(alone, search_stuck=True))
