@@ -9,6 +9,7 @@ bench/validate_plan.py, which shares no code with btplan, accepts it.
 
     python bench/planning.py --corpus DIR [--per-domain 3] [--timeout 30]
                              [--planners btplan,pyperplan,fd] [--only barman,tpp]
+(`btplan-nosearch` is btplan without its last-resort search, `btplan plan --no-search`.)
 
 Peers: pyperplan (GBFS with h_FF, the `bench` extra) and Fast Downward's lama-first
 (the `fd` extra, `up-fast-downward`), skipped when not installed.
@@ -88,9 +89,10 @@ def fd_driver() -> str | None:
 
 
 def command(planner: str, domain: Path, problem: Path, plan: str, limit: float) -> list[str]:
-    if planner == "btplan":
+    if planner in ("btplan", "btplan-nosearch"):  # the latter without the last resort
         return [sys.executable, "-c", BTPLAN, "plan", str(domain), str(problem),
-                "-o", os.devnull, "--plan-out", plan, "--timeout", f"{limit:g}"]
+                "-o", os.devnull, "--plan-out", plan, "--timeout", f"{limit:g}",
+                *(["--no-search"] if planner == "btplan-nosearch" else [])]
     if planner == "pyperplan":
         return [sys.executable, "-c", PYPERPLAN, str(domain), str(problem), plan]
     driver = fd_driver()

@@ -54,6 +54,15 @@ from btplan.planner.expand import (
 )
 from btplan.planner.lookahead import closest_first, keep_reachable, needed_later
 from btplan.planner.protect import white_knights
+from btplan.planner.agenda import goal_agenda
+from btplan.planner.rescue import Rescuer
+
+STUCK_EXPANSIONS = 8
+"""Expansions of one condition after which it counts as stuck (for `search_stuck`)."""
+
+ROUND_EXPANSIONS = 40
+"""Expansions of one condition after which the attempt stops: it goes round, and the
+next strategy (or the last-resort search) is better spent time than the budget."""
 
 BACKTRACKS = 2
 """Further batches of achievers tried when the first has no conflict-free place."""
@@ -119,8 +128,12 @@ class BlendedLoop:
         self.task = task
         self.world = world
         self.options = options or PlannerOptions()
-        self.tree = initial_tree(task)
         self.index = AchieverIndex(task, self.options, like)
+        order = None
+        if self.options.goal_agenda and self.options.mutexes and len(task.goal_literals) > 1:
+            order = goal_agenda(task.goal_literals, self.index.relaxed.producers,
+                                self.index.mutexes)
+        self.tree = initial_tree(task, order)
         self.grounding: dict[LeafKey, GroundAction] = {}
         self.expansions: list[Expansion] = []
         self.ticks = 0
@@ -132,6 +145,12 @@ class BlendedLoop:
         self._last_state: frozenset[Atom] | None = None
         self._stalls = 0
         self.premature_successes = 0
+        self.searches = 0
+        """Stuck conditions planned by the last-resort search (`search_stuck`)."""
+        self.deadline: float | None = None
+        """A time.perf_counter() value the last-resort search must not run past."""
+        self._rescuer: Rescuer | None = None
+        self._tally: Counter[GroundLiteral] = Counter()
         check = goal_check(self.tree)
         if check is not None:  # the final re-check of the goals is never expanded
             self._expanded.update(check.children)
@@ -188,22 +207,36 @@ class BlendedLoop:
     def _expand(self) -> Expansion | None:
         state = self.world.facts()
         missing: list[GroundLiteral] = []
+        stuck: list[Node] = []
         failed = failed_conditions(self.tree, self._expanded)
         if self.options.closest_first and len(failed) > 1:
             failed = closest_first(failed, self.index.relaxed, state)
         for node in failed:
             literal = literal_of(node)
             assert literal is not None
+            if self._tally[literal] >= STUCK_EXPANSIONS:
+                searched = self._search(node)  # expanded again and again: going round
+                if searched is not None:
+                    return searched
+                if self._tally[literal] >= ROUND_EXPANSIONS and self.options.refine_more:
+                    raise NoProgressError(
+                        f"{literal} was expanded {self._tally[literal]} times: the tree goes "
+                        f"round (expanded most often: {self.most_expanded()})")
             achievers, spare = self._achievers(node, literal, state)
             self._expanded.add(node)
             if not achievers:
                 self._dead.add(node)
                 missing.append(literal)
+                stuck.append(node)
                 continue
             return self._apply(node, literal, achievers, spare)
         more = self._reexpand(state) if self.options.refine_more else None
         if more is not None:
             return more
+        for node in stuck:
+            searched = self._search(node)
+            if searched is not None:
+                return searched
         if missing:
             raise NoAchieverError(self._no_achiever_reason(missing))
         return None
@@ -338,6 +371,7 @@ class BlendedLoop:
     ) -> Expansion:
         expansion = Expansion(self.ticks, str(literal), [str(a) for a in achievers], conflicts,
                               moves)
+        self._tally[literal] += 1
         self.expansions.append(expansion)
         return expansion
 
@@ -381,6 +415,9 @@ class BlendedLoop:
                 continue
             return self._record(literal, batch, len(resolution.conflicts), resolution.moves)
         assert first is not None
+        searched = self._search(node)
+        if searched is not None:
+            return searched
         raise first
 
     @staticmethod
@@ -395,6 +432,28 @@ class BlendedLoop:
         self._expanded.update(nodes)
         self._dead.update(nodes)
         self._guards_seen.update(nodes)
+
+    def _search(self, node: Node) -> Expansion | None:
+        """The last resort (`search_stuck`): plan a stuck condition by search.
+
+        btplan/planner/rescue.py says what is searched for and where the plan goes;
+        the checks it adds are never expanded.
+        """
+        if not self.options.search_stuck:
+            return None
+        if self._rescuer is None:
+            mutexes = self.index.mutexes if self.options.mutexes else None
+            self._rescuer = Rescuer(self.task, self.index.subgoal_search, mutexes)
+        rescued = self._rescuer.rescue(self.tree, node, self.world.facts(), self.deadline)
+        if rescued is None:
+            return None
+        literal, steps, checks = rescued
+        for action in steps:
+            self.grounding[action.key] = action
+        self._expanded.update([*checks, node])
+        self._dead.update([*checks, node])
+        self.searches += 1
+        return self._record(literal, steps, 0, 0)
 
     def _protect(self, subtree: Fallback) -> None:
         """Check, before each new achiever, what keeps the other goals reachable."""

@@ -60,6 +60,8 @@ class PlanStats:
     rounds: int
     seconds: float
     premature_successes: int = 0
+    searches: int = 0
+    """Stuck conditions planned by the last-resort search and inserted as subtrees."""
     cost: float = 0.0
     """The executed plan's cost: the sum of its actions' costs (its length in unit cost)."""
 
@@ -84,8 +86,14 @@ def plan(
     options: PlannerOptions | None = None,
     on_expansion: Callable[[BehaviorTree, Expansion], None] | None = None,
     stop: Callable[[], bool] | None = None,
+    last_resort: bool = True,
 ) -> PlanResult:
     """Backchain a BT for `task` by planning and acting in the symbolic world.
+
+    Without explicit `options`, the fallback strategies run without the last-resort
+    search; with `last_resort`, the default options with it come second, right after
+    the default options without it (a stuck condition is then planned by search).
+    Explicit options run as they are.
 
     Raises a PlanningError (NoAchieverError, UnresolvableConflictError,
     NoProgressError, BudgetExceededError) with a reason when no tree is found, and
@@ -96,7 +104,12 @@ def plan(
         opts = replace(opts, max_expansions=max_expansions)
     started = time.perf_counter()
     deadline = None if timeout is None else started + timeout
-    strategies = [opts] if options is not None else fallback_strategies(opts)
+    if options is not None:
+        strategies = [opts]
+    else:
+        strategies = fallback_strategies(replace(opts, search_stuck=False))
+        if last_resort:  # right after the default: later strategies may use up the time
+            strategies.insert(1, opts)
     first_error: PlanningError | None = None
     found: PlanResult | None = None
     models = AchieverIndex(task)  # the relaxed model and mutexes, built once for all
@@ -161,6 +174,7 @@ def _attempt(
     groundings: dict[LeafKey, GroundAction] = {}
     world = SymbolicWorld(task, seed=seed, groundings=groundings)
     loop = BlendedLoop(task, world, opts, like=models)
+    loop.deadline = deadline
     ticks_left = max_ticks
 
     def watch(report: TickReport) -> None:
@@ -226,5 +240,6 @@ def _stats(
         rounds=rounds,
         seconds=seconds,
         premature_successes=premature,
+        searches=loop.searches,
         cost=sum(a.cost for a in world.executed),
     )

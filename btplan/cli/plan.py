@@ -81,6 +81,9 @@ def plan_command(
     paper: Annotated[bool, typer.Option(
         "--paper", help="Algorithms 1-3 exactly as published, without btplan's extensions.")
     ] = False,
+    no_search: Annotated[bool, typer.Option(
+        "--no-search", help="Never plan a stuck condition by search (the last resort).")
+    ] = False,
     timeout: Annotated[float, typer.Option(
         "--timeout", metavar="SECONDS",
         help="Give up after SECONDS seconds (exit 1); 0: no limit.")] = DEFAULT_TIMEOUT,
@@ -123,12 +126,14 @@ def plan_command(
     options = PlannerOptions.paper() if paper else None
     if max_alternatives is not None:
         options = replace(options or PlannerOptions(), max_alternatives=max_alternatives)
+    if no_search and options is not None:
+        options = replace(options, search_stuck=False)
     with Interrupts() as interrupted:
         try:
             task = load(resolve(domain), *([problem] if problem is not None else []))
             result = plan(task, seed=seed, max_expansions=max_expansions, max_ticks=max_ticks,
                           timeout=timeout or None, options=options, on_expansion=trace,
-                          stop=interrupted)
+                          stop=interrupted, last_resort=not no_search)
         except Interrupted as error:
             stderr.print(f"[bold yellow]interrupted[/]: {escape(error.progress)}; "
                          "nothing written")
@@ -210,4 +215,6 @@ def summary(result: PlanResult) -> str:
         f"[green]planned[/]: {s.expansions} expansions, {s.conflicts_resolved} conflicts "
         f"resolved ({s.moves} moves), tree of {s.tree_size} nodes, {s.actions_executed} actions "
         f"executed (cost {s.cost:g}), {s.seconds:.3f} s"
+        + (f"; last resort: {s.searches} stuck conditions planned by search"
+           if s.searches else "")
     )

@@ -26,6 +26,7 @@ from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
 from btplan.planner.options import PlannerOptions
 from btplan.planner.protocol import Refiner
+from btplan.planner.search import SubgoalSearch
 
 ALL = 1 << 30
 """A limit on achievers that keeps them all."""
@@ -39,6 +40,7 @@ class _Shared:
         self.made: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
         self.relaxed: RelaxedModel | None = None
         self.mutexes: Mutexes | None = None
+        self.search: SubgoalSearch | None = None
 
 
 class AchieverIndex:
@@ -88,6 +90,14 @@ class AchieverIndex:
                                      self.task.domain)
         return shared.mutexes
 
+    @property
+    def subgoal_search(self) -> SubgoalSearch:
+        """The last-resort search over the relaxed model's groundings, built on first use."""
+        shared = self._shared
+        if shared.search is None:
+            shared.search = SubgoalSearch(self.relaxed.actions)
+        return shared.search
+
     def achievers(
         self,
         condition: GroundLiteral,
@@ -122,9 +132,22 @@ class AchieverIndex:
                 action = self.ground(template, args)
                 if _makes_true(action, condition) and action.key not in found:
                     found[action.key] = action
-        scored = sorted((self._rank(a, state), a) for a in found.values())
+        candidates = list(found.values())
+        if self.options.mutexes:
+            candidates = [a for a in candidates if not self._impossible(a)]
+        scored = sorted((self._rank(a, state), a) for a in candidates)
         ranked = [a for score, a in scored if score[0] < math.inf]
         return ranked[: limit or self.options.max_alternatives]
+
+    def _impossible(self, action: GroundAction) -> bool:
+        """Whether two preconditions of `action` exclude each other (h^2): it never runs.
+
+        Barman's fill-shot(shot1, i, left, left, d) needs holding(left, shot1) and
+        handempty(left); h_add ranks it like any other grounding.
+        """
+        mutexes = self.mutexes
+        pre = [p for p in action.preconditions if p.positive and mutexes.knows(p.atom)]
+        return any(mutexes.exclusive(a, b) for i, a in enumerate(pre) for b in pre[i + 1:])
 
     def _rank(self, action: GroundAction, state: frozenset[Atom]) -> tuple[float, int, str]:
         failing = sum(1 for p in action.preconditions if not p.holds(state))

@@ -182,6 +182,15 @@ def sequence_slots(node: Node) -> list[tuple[SequenceNode, int]]:
     return slots
 
 
+def held_before(node: Node) -> list[GroundLiteral]:
+    """What the earlier siblings along `node`'s Sequence ancestors hold when it runs."""
+    held: list[GroundLiteral] = []
+    for sequence, index in sequence_slots(node):
+        for earlier in sequence.children[:index]:
+            held += guarantees(earlier)
+    return list(dict.fromkeys(held))
+
+
 def find_conflicts(subtree: Node, judge: Judge) -> list[Conflict]:
     """Rules (a) and (b) for `subtree` where it stands now."""
     own = achiever_leaves(subtree)

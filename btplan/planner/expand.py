@@ -62,15 +62,18 @@ GOAL_CHECK = "all goals hold"
 """Name of the Sequence that checks every goal again at the end of a multi-goal tree."""
 
 
-def initial_tree(task: Task) -> BehaviorTree:
+def initial_tree(task: Task, order: Sequence[GroundLiteral] | None = None) -> BehaviorTree:
     """Algorithm 1, lines 1-3: the goal conditions in a Sequence; one goal stands alone.
+
+    `order` lists the goals in the order the Sequence checks them (the problem's order
+    when None); the final check keeps the problem's order.
 
     With several goals, a last child checks them all again (named GOAL_CHECK, never
     expanded): actions may finish within the tick they start, so work for a later goal
     can undo an earlier one after it was checked, and the tree must not report SUCCESS
     then. A single goal needs no check: only its own achiever runs after it.
     """
-    goals = [condition_node(g, task) for g in task.goal_literals]
+    goals = [condition_node(g, task) for g in (order or task.goal_literals)]
     if len(goals) == 1:
         return BehaviorTree(goals[0])
     check = SequenceNode([condition_node(g, task) for g in task.goal_literals], name=GOAL_CHECK)

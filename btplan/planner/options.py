@@ -27,6 +27,9 @@ class PlannerOptions:
     skips bindings with a precondition unreachable from the state while enumerating,
     so `max_bindings` counts only bindings that could run. `backtrack` tries the
     next-ranked achievers when the chosen ones have no conflict-free place.
+    `search_stuck`, the last resort, plans a stuck condition by a complete search
+    (btplan/planner/search.py) and inserts the plan as a subtree. `goal_agenda` orders
+    the goals by reasonable orders before the tree is built (btplan/planner/agenda.py).
     `expansions_per_tick` lets the acting loop tick the tree again, within the same tick
     (the world has not moved), after an expansion, up to that many expansions: Algorithm 1
     as published spends a tick of the world per expansion, which a sequential planner,
@@ -46,6 +49,8 @@ class PlannerOptions:
     avoid_dead_ends: bool = True
     prune_bindings: bool = True
     backtrack: bool = True
+    search_stuck: bool = True
+    goal_agenda: bool = True
     stall_limit: int = 3
     expansions_per_tick: int = 1
 
@@ -54,5 +59,6 @@ class PlannerOptions:
         """Algorithms 1-3 as published: first-match order, no extensions."""
         base = cls(heuristic=False, reorder_goals=False, mutexes=False, refine_more=False,
                    closest_first=False, avoid_dead_ends=False, prune_bindings=False,
-                   backtrack=False)
+                   backtrack=False, search_stuck=False,
+                   goal_agenda=False)
         return replace(base, **changes)
