@@ -7,7 +7,7 @@ holds the per-tick records and the run summary; `live_view` draws them in a term
 
 from btplan.acting.loop import BlendedLoop, Expansion, TickReport
 from btplan.acting.offline import PlanResult, PlanStats, load, plan
-from btplan.acting.online import ACTING_OPTIONS, RunOutcome, run
+from btplan.acting.online import ACTING_OPTIONS, RunOutcome, run, task_models
 
 __all__ = [
     "ACTING_OPTIONS",
@@ -20,4 +20,5 @@ __all__ = [
     "load",
     "plan",
     "run",
+    "task_models",
 ]

@@ -12,6 +12,7 @@ from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from btplan.acting.ahead import attached, later_false
 from btplan.bt import (
     FAILURE,
     SUCCESS,
@@ -116,8 +117,13 @@ class BlendedLoop:
         world: PlanningWorld,
         options: PlannerOptions | None = None,
         like: AchieverIndex | None = None,
+        look_ahead: bool = False,
     ) -> None:
+        """`like`: an index of the same task to share models with; `look_ahead`: also
+        expand, in the same tick, the later preconditions that are false (btplan.acting.ahead)."""
         self.task = task
+        self.look_ahead = look_ahead
+        self._ahead: list[Node] = []
         self.world = world
         self.options = options or PlannerOptions()
         self.tree = initial_tree(task)
@@ -161,10 +167,12 @@ class BlendedLoop:
             started = time.process_time()
             try:
                 expansion = self._expand()
+                if expansion is not None:
+                    report.expansions.append(expansion)
+                    self._expand_ahead(report)
             finally:
                 report.planning_seconds += time.process_time() - started
             if expansion is not None:
-                report.expansions.append(expansion)
                 self._stalls = 0
                 if len(report.expansions) < self.options.expansions_per_tick:
                     continue  # the world has not moved: tick the grown tree at once
@@ -197,6 +205,8 @@ class BlendedLoop:
                 self._dead.add(node)
                 missing.append(literal)
                 continue
+            if self.look_ahead:  # before ExpandTree moves the node under a Fallback
+                self._ahead = later_false(node, state, self._expanded)
             return self._apply(node, literal, achievers, spare)
         more = self._reexpand(state) if self.options.refine_more else None
         if more is not None:
@@ -204,6 +214,30 @@ class BlendedLoop:
         if missing:
             raise NoAchieverError(self._no_achiever_reason(missing))
         return None
+
+    def _expand_ahead(self, report: TickReport) -> None:
+        """Expand the false preconditions after the one just expanded, as the tick would
+        once the robot had achieved that one; a condition without a conflict-free place
+        now is left for the tick to find."""
+        pending, self._ahead = self._ahead, []
+        state = self.world.facts()
+        for node in pending:
+            if (len(report.expansions) >= self.options.expansions_per_tick
+                    or len(self.expansions) >= self.options.max_expansions):
+                return
+            literal = literal_of(node)
+            if (literal is None or node in self._expanded or literal.holds(state)
+                    or not attached(node, self.tree.root)):
+                continue
+            achievers, spare = self._achievers(node, literal, state)
+            if not achievers:
+                continue
+            try:
+                expansion = self._apply(node, literal, achievers, spare)
+            except UnresolvableConflictError:
+                continue
+            self._expanded.add(node)
+            report.expansions.append(expansion)
 
     def _achievers(
         self, node: Node, literal: GroundLiteral, state: frozenset[Atom]
@@ -218,7 +252,8 @@ class BlendedLoop:
         achievers = self.index.achievers(literal, state, self.world.refine, ALL)
         achievers = self._non_circular(achievers, node, literal)
         kept = keep_reachable(achievers, needed_later(node), self.index.relaxed, state, width)
-        return kept, [a for a in achievers if a not in kept]
+        chosen = {a.key for a in kept}  # keys: comparing whole actions is slow
+        return kept, [a for a in achievers if a.key not in chosen]
 
     def _non_circular(
         self, achievers: list[GroundAction], node: Node, literal: GroundLiteral

@@ -5,7 +5,7 @@ from __future__ import annotations
 import contextlib
 import os
 import signal
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from types import FrameType
 from typing import Annotated, Any
 
@@ -15,19 +15,20 @@ from rich.progress import (
     BarColumn,
     MofNCompleteColumn,
     Progress,
+    TaskID,
     TextColumn,
     TimeElapsedColumn,
     TimeRemainingColumn,
 )
 from typer.core import TyperCommand
 
-from btplan.acting.baselines import BASELINES, require_pyperplan
+from btplan.acting.baselines import BASELINES, check_strips, require_pyperplan
 from btplan.cli.app import app, guarded, stderr
 from btplan.cli.outputs import Output, check_outputs
 from btplan.cli.run import Sim
-from btplan.errors import InputError, Span
+from btplan.errors import BtplanError, InputError, Span
 from btplan.shipped import resolve
-from btplan.sweep import output, pool
+from btplan.sweep import explain, output, pool
 from btplan.sweep.runs import Job, Row, check_methods, prepared
 from btplan.sweep.stats import summarize
 
@@ -54,6 +55,29 @@ def _terminate_like_ctrl_c() -> Iterator[list[int]]:
         yield received
     finally:
         signal.signal(signal.SIGTERM, previous)
+
+
+def _explain(job: Job, rows: list[Row], execute: Callable[[list[pool.Run], list[Row]], None],
+              progress: Progress, task: TaskID) -> None:
+    """Name the cause of every failed run (btplan.sweep.explain), rerunning the seeds
+    that need it with replan-unlimited; those reruns are not rows of the output."""
+    reference = explain.references(rows)
+    todo = explain.needed(rows)
+    if todo and job.sim == "symbolic" and _baselines_apply(job):
+        progress.update(task, total=(progress.tasks[0].total or 0) + len(todo))
+        extra: list[Row] = []
+        execute(todo, extra)
+        reference.update(explain.references(extra))
+    explain.label(rows, reference)
+
+
+def _baselines_apply(job: Job) -> bool:
+    try:
+        require_pyperplan()
+        check_strips(prepared(job)[0])
+    except BtplanError:
+        return False
+    return True
 
 
 def parse_seeds(text: str) -> range:
@@ -170,24 +194,31 @@ def sweep(
                   console=stderr, disable=quiet, transient=True) as progress:
         task = progress.add_task("runs", total=len(runs))
 
-        def on_row(row: Row) -> None:
-            rows.append(row)
-            progress.advance(task)
+        def execute(todo: list[pool.Run], into: list[Row]) -> None:
+            def on_row(row: Row) -> None:
+                into.append(row)
+                progress.advance(task)
+
+            if ray is not None:
+                pool.run_ray(job, todo, on_row, None if ray == LOCAL else ray, jobs or None)
+            elif (jobs or os.cpu_count() or 1) == 1 and timeout is None:
+                pool.run_serial(job, todo, on_row)
+            else:  # a run that must be stopped needs a process of its own
+                pool.run_local(job, todo, on_row, jobs or os.cpu_count() or 1, timeout)
 
         try:
             with _terminate_like_ctrl_c() as terminated:
-                if ray is not None:
-                    pool.run_ray(job, runs, on_row, None if ray == LOCAL else ray,
-                                 jobs or None)
-                elif (jobs or os.cpu_count() or 1) == 1 and timeout is None:
-                    pool.run_serial(job, runs, on_row)
-                else:  # a run that must be stopped needs a process of its own
-                    pool.run_local(job, runs, on_row, jobs or os.cpu_count() or 1, timeout)
+                execute(runs, rows)
+                _explain(job, rows, execute, progress, task)
         except KeyboardInterrupt:
             interrupted = True
     output.write_rows(output_path, rows)
     points = summarize(rows)
     stderr.print(escape(output.markdown_table(points)), end="")
+    causes = explain.markdown(rows)
+    if causes:
+        stderr.print("failed runs by cause (replan-unlimited rerun on the same seed):")
+        stderr.print(escape(causes), end="")
     if plot is not None and points:
         output.plot(points, plot)
     if interrupted:

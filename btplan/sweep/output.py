@@ -96,7 +96,9 @@ def read_rows(path: str) -> list[Row]:
                 "ticks": int(r["ticks"]), "actions": int(r["actions"]),
                 "planner_calls": int(r["planner_calls"]),
                 "planning_seconds": float(r["planning_seconds"]),
+                "setup_seconds": float(r.get("setup_seconds") or 0.0),
                 "checks": float(r["checks"]), "disturbances": int(r["disturbances"]),
+                "reason": r.get("reason") or "", "cause": r.get("cause") or "",
                 "error": r["error"],
             })
         return out
