@@ -29,7 +29,7 @@ from btplan.cli.run import Sim
 from btplan.errors import BtplanError, InputError, Span
 from btplan.shipped import resolve
 from btplan.sweep import explain, output, pool
-from btplan.sweep.runs import Job, Row, check_methods, prepared
+from btplan.sweep.runs import Job, Row, check_methods, check_sim, prepared
 from btplan.sweep.stats import summarize
 
 
@@ -146,7 +146,7 @@ def sweep(
         metavar="PROBLEM", help="Problem file, when it is not in DOMAIN.", show_default=False)
     ] = None,
     scenario: Annotated[str, typer.Option(
-        metavar="NAME", help="undo, obstacle, towers, packages, scene; a spec file with {p} for the rate; "
+        metavar="NAME", help="undo, obstacle, towers, packages, scene, shove; a spec file with {p} for the rate; "
              "or module:attribute.")] = "undo",
     method: Annotated[str, typer.Option(
         metavar="M,...", help="btplan, btplan-paper, replan, repair, replan-unlimited.")
@@ -186,6 +186,7 @@ def sweep(
     output.check_output(output_path)
     job = Job(tuple(files), scenario, sim.value, max_ticks)
     prepared(job)  # bad domain files or scenarios are refused here, not in every worker
+    check_sim(job)
     runs = [(m, r, s) for r in rate_list for m in methods for s in seed_range]
     rows: list[Row] = []
     interrupted = False

@@ -69,6 +69,11 @@ def check_methods(methods: list[str], sim: str) -> None:
                              Span("--method", 1, 1), "use --method btplan with --sim pybullet")
 
 
+def check_sim(job: Job) -> None:
+    """Refuse a scenario whose agents the chosen world cannot serve, before any run."""
+    resolve(job.scenario).check_sim(job.sim)
+
+
 def empty_row(job: Job, method: str, rate: float, seed: int, error: str) -> Row:
     try:
         scenario = resolve(job.scenario).name
@@ -108,8 +113,8 @@ def _world(job: Job, task: Task, seed: int) -> tuple[Any, list[Any]]:
 def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: str,
              rate: float, seed: int) -> Row:
     world, scene_agents = _world(job, task, seed)
-    agents = [*scenario.agents(task, rate, seed), *scene_agents]
     try:
+        agents = [*scenario.agents_in(world, job.sim, task, rate, seed), *scene_agents]
         if method in BASELINES:
             out = run_baseline(task, world, agents, method, max_ticks)
             return {"success": out.reached, "ticks": out.ticks, "actions": out.actions,
