@@ -108,7 +108,8 @@ class BlendedLoop:
     until no conflict is left. A condition without achievers is skipped in favour of
     the next failed one; if none has achievers, NoAchieverError names them. When the
     world comes back to a state it was in, with no expansion in between and no
-    outside change, the loop is going round in circles: NoProgressError.
+    outside change, the loop is going round in circles: NoProgressError (only states that
+    follow a completed action count; see `_finished`).
     """
 
     def __init__(
@@ -158,6 +159,7 @@ class BlendedLoop:
         if before != self._last_state:
             self._seen.clear()  # an outside change: a repeated state is no longer a loop
         self.ticks += 1
+        finished = self._finished()
         report = TickReport(self.ticks, FAILURE)
         while True:
             status = report.status = self.tree.tick(self.world)
@@ -182,13 +184,24 @@ class BlendedLoop:
                 self._stall()
             break
         after = self.world.facts()
-        if after != before:
+        if after != before and (finished is None or self._finished() != finished):
             key = (after, len(self.expansions))
             if key in self._seen:
                 raise NoProgressError(self._loop_reason())
             self._seen.add(key)
         self._last_state = after
         return report
+
+    def _finished(self) -> int | None:
+        """Actions the robot has completed (None: the world keeps no log of them).
+
+        A state counts towards going round in circles only when it follows a completed
+        action: in a simulator the facts also change while an action runs (the robot
+        drives past a cube, and `near` comes and goes), which is progress, not a loop.
+        In the symbolic world facts change within a tick only when an action completes.
+        """
+        executed = getattr(self.world, "executed", None)
+        return None if executed is None else len(executed)
 
     def _expand(self) -> Expansion | None:
         state = self.world.facts()
