@@ -58,7 +58,7 @@ def write_rows(path: str, rows: Sequence[Row]) -> None:
     writer = csv.DictWriter(buffer, fieldnames=COLUMNS, lineterminator="\n")
     writer.writeheader()
     for row in ordered:
-        writer.writerow({k: row[k] for k in COLUMNS})
+        writer.writerow({k: row.get(k) for k in COLUMNS})  # older rows lack newer columns
     write_atomic(path, buffer.getvalue())
 
 
@@ -67,7 +67,7 @@ def _write_parquet(path: str, rows: Sequence[Row]) -> None:
     import pyarrow as pa
     import pyarrow.parquet as pq  # type: ignore[import-untyped]
 
-    table = pa.Table.from_pylist([{k: r[k] for k in COLUMNS} for r in rows])
+    table = pa.Table.from_pylist([{k: r.get(k) for k in COLUMNS} for r in rows])
     target = Path(path)
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp",
                                dir=target.parent if str(target.parent) else ".")
