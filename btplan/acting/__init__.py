@@ -15,11 +15,12 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from btplan.acting.loop import BlendedLoop, Expansion, TickReport
     from btplan.acting.offline import PlanResult, PlanStats, load, plan
-    from btplan.acting.online import ACTING_OPTIONS, RunOutcome, run
+    from btplan.acting.online import ACTING_OPTIONS, RunOutcome, run, task_models
 
 _HOMES = {"BlendedLoop": "loop", "Expansion": "loop", "TickReport": "loop",
           "PlanResult": "offline", "PlanStats": "offline", "load": "offline", "plan": "offline",
-          "ACTING_OPTIONS": "online", "RunOutcome": "online", "run": "online"}
+          "ACTING_OPTIONS": "online", "RunOutcome": "online", "run": "online",
+          "task_models": "online"}
 
 
 def __getattr__(name: str) -> Any:
@@ -40,4 +41,5 @@ __all__ = [
     "load",
     "plan",
     "run",
+    "task_models",
 ]

@@ -12,6 +12,7 @@ from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from btplan.acting.ahead import attached, later_false
 from btplan.bt import (
     FAILURE,
     SUCCESS,
@@ -115,7 +116,8 @@ class BlendedLoop:
     until no conflict is left. A condition without achievers is skipped in favour of
     the next failed one; if none has achievers, NoAchieverError names them. When the
     world comes back to a state it was in, with no expansion in between and no
-    outside change, the loop is going round in circles: NoProgressError.
+    outside change, the loop is going round in circles: NoProgressError (only states that
+    follow an ended action count; see `_actions_ended`).
     """
 
     def __init__(
@@ -124,8 +126,13 @@ class BlendedLoop:
         world: PlanningWorld,
         options: PlannerOptions | None = None,
         like: AchieverIndex | None = None,
+        look_ahead: bool = False,
     ) -> None:
+        """`like`: an index of the same task to share models with; `look_ahead`: also
+        expand, in the same tick, the later preconditions that are false (btplan.acting.ahead)."""
         self.task = task
+        self.look_ahead = look_ahead
+        self._ahead: list[Node] = []
         self.world = world
         self.options = options or PlannerOptions()
         self.index = AchieverIndex(task, self.options, like)
@@ -181,10 +188,12 @@ class BlendedLoop:
             started = time.process_time()
             try:
                 expansion = self._expand()
+                if expansion is not None:
+                    report.expansions.append(expansion)
+                    self._expand_ahead(report)
             finally:
                 report.planning_seconds += time.process_time() - started
             if expansion is not None:
-                report.expansions.append(expansion)
                 self._stalls = 0
                 if len(report.expansions) < self.options.expansions_per_tick:
                     continue  # the world has not moved: tick the grown tree at once
@@ -194,9 +203,10 @@ class BlendedLoop:
                 self._stall()
             break
         after = self.world.facts()
-        # A state seen again is a loop only across actions that ended: while one action
-        # runs, a continuous world may pass a state twice (driving past a spot).
-        if after != before and (status is FAILURE or self._actions_ended() != ended):
+        # A state seen again is a loop only across actions that ended (see
+        # `_actions_ended`): while one action runs, a continuous world may pass a state twice.
+        if after != before and (ended is None or status is FAILURE
+                                or self._actions_ended() != ended):
             key = (after, len(self.expansions))
             if key in self._seen:
                 raise NoProgressError(self._loop_reason())
@@ -229,6 +239,8 @@ class BlendedLoop:
                 missing.append(literal)
                 stuck.append(node)
                 continue
+            if self.look_ahead:  # before ExpandTree moves the node under a Fallback
+                self._ahead = later_false(node, state, self._expanded)
             return self._apply(node, literal, achievers, spare)
         more = self._reexpand(state) if self.options.refine_more else None
         if more is not None:
@@ -240,6 +252,30 @@ class BlendedLoop:
         if missing:
             raise NoAchieverError(self._no_achiever_reason(missing))
         return None
+
+    def _expand_ahead(self, report: TickReport) -> None:
+        """Expand the false preconditions after the one just expanded, as the tick would
+        once the robot had achieved that one; a condition without a conflict-free place
+        now is left for the tick to find."""
+        pending, self._ahead = self._ahead, []
+        state = self.world.facts()
+        for node in pending:
+            if (len(report.expansions) >= self.options.expansions_per_tick
+                    or len(self.expansions) >= self.options.max_expansions):
+                return
+            literal = literal_of(node)
+            if (literal is None or node in self._expanded or literal.holds(state)
+                    or not attached(node, self.tree.root)):
+                continue
+            achievers, spare = self._achievers(node, literal, state)
+            if not achievers:
+                continue
+            try:
+                expansion = self._apply(node, literal, achievers, spare)
+            except UnresolvableConflictError:
+                continue
+            self._expanded.add(node)
+            report.expansions.append(expansion)
 
     def _achievers(
         self, node: Node, literal: GroundLiteral, state: frozenset[Atom]
@@ -254,7 +290,8 @@ class BlendedLoop:
         achievers = self.index.achievers(literal, state, self.world.refine, ALL)
         achievers = self._non_circular(achievers, node, literal)
         kept = keep_reachable(achievers, needed_later(node), self.index.relaxed, state, width)
-        return kept, [a for a in achievers if a not in kept]
+        chosen = {a.key for a in kept}  # keys: comparing whole actions is slow
+        return kept, [a for a in achievers if a.key not in chosen]
 
     def _non_circular(
         self, achievers: list[GroundAction], node: Node, literal: GroundLiteral
@@ -473,9 +510,18 @@ class BlendedLoop:
         mutexes = self.index.mutexes if self.options.mutexes else None
         return Judge(self.grounding, mutexes, frozenset(self._guards_seen))
 
-    def _actions_ended(self) -> int:
-        """How many actions the world saw finish or fail (0 for a world without logs)."""
-        return len(getattr(self.world, "executed", ())) + len(getattr(self.world, "failed", ()))
+    def _actions_ended(self) -> int | None:
+        """Actions the world saw finish or fail (None: it keeps no log of them).
+
+        A state counts towards going round in circles only when it follows an ended
+        action: in a simulator the facts also change while an action runs (the robot
+        drives past a cube, and `near` comes and goes), which is progress, not a loop.
+        In the symbolic world facts change within a tick only when an action completes.
+        """
+        executed = getattr(self.world, "executed", None)
+        if executed is None:
+            return None
+        return len(executed) + len(getattr(self.world, "failed", ()))
 
     def _stall(self) -> None:
         """The tree failed with nothing to expand (an action failed): retry, a few times."""

@@ -19,7 +19,7 @@ from btplan.bt import FAILURE, BehaviorTree, Node, Status
 from btplan.bt.trace import TickRecorder
 from btplan.errors import PlanningError
 from btplan.model import Atom, GroundAction, Task
-from btplan.planner import PlannerOptions
+from btplan.planner import AchieverIndex, PlannerOptions
 from btplan.worlds.agents import Agent, act_all, agents_from_specs, check_world
 from btplan.worlds.disturb import DisturbSpec, check_specs, parse_spec
 from btplan.worlds.symbolic import SymbolicWorld
@@ -68,6 +68,20 @@ class RunOutcome:
     def plan_text(self) -> str:
         """The executed actions in the IPC plan format, one per line."""
         return "".join(a.ipc() + "\n" for a in self.executed)
+
+
+def task_models(task: Task, options: PlannerOptions | None = None) -> AchieverIndex:
+    """What the loop's expansions use that depends on the task only, built now.
+
+    The relaxed model (every grounding the static facts allow, for h_add) and, when
+    the options use them, the h^2 mutexes: without this the first expansion of a run
+    builds them, and its cost is not that of coping with the world.
+    """
+    models = AchieverIndex(task, options or ACTING_OPTIONS)
+    models.relaxed.actions  # noqa: B018 (built on first access)
+    if (options or ACTING_OPTIONS).mutexes:
+        models.mutexes  # noqa: B018
+    return models
 
 
 class _Observer:
@@ -161,6 +175,8 @@ def run_task(
     failure_probability: Mapping[str, float] | None = None,
     options: PlannerOptions | None = None,
     stop: Callable[[], bool] | None = None,
+    look_ahead: bool = False,
+    models: AchieverIndex | None = None,
 ) -> RunOutcome:
     """Plan and act at once (Algorithm 1) in `world`, with `agents` acting before each tick.
 
@@ -171,7 +187,8 @@ def run_task(
     """
     if world is None:
         world = SymbolicWorld(task, seed=seed, failure_probability=failure_probability)
-    loop = BlendedLoop(task, world, options or ACTING_OPTIONS)
+    loop = BlendedLoop(task, world, options or ACTING_OPTIONS, like=models,
+                       look_ahead=look_ahead)
     observer = _Observer(world, agents, loop.tree, view, rate, stop)
     interrupted = False
     halted_on_stop: tuple[str, ...] = ()
@@ -210,6 +227,8 @@ def run(
     options: PlannerOptions | None = None,
     stop: Callable[[], bool] | None = None,
     world_name: str = "this world",
+    look_ahead: bool = False,
+    models: AchieverIndex | None = None,
 ) -> RunOutcome:
     """Run `task` in a world with disturbances: the library form of `btplan run`.
 
@@ -219,7 +238,10 @@ def run(
     tick; raises InputError for a bad spec. `options` are the planner's
     (`PlannerOptions.paper()` for the published algorithms); `stop` is asked before
     each tick whether to end the run there (see `run_task`); `world_name` is how
-    messages call the world ("the PyBullet world").
+    messages call the world ("the PyBullet world"); `look_ahead` expands the later
+    false preconditions of an action with the first (btplan.acting.ahead); `models`
+    are the task's models built beforehand (`task_models`), so that their cost can
+    be told apart from the expansions'.
     """
     specs = [parse_spec(s) if isinstance(s, str) else s for s in disturb]
     check_specs(specs, task)
@@ -228,4 +250,4 @@ def run(
     everyone = [*agents_from_specs(specs, seed), *agents]
     return run_task(task, world=world, agents=everyone, seed=seed, max_ticks=max_ticks,
                     view=view, rate=rate, failure_probability=failure_probability,
-                    options=options, stop=stop)
+                    options=options, stop=stop, look_ahead=look_ahead, models=models)

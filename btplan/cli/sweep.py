@@ -5,11 +5,9 @@ from __future__ import annotations
 import contextlib
 import os
 import signal
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from types import FrameType
-from typing import Annotated, Any
-
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 from typer.core import TyperCommand
@@ -18,11 +16,13 @@ from btplan.cli.app import app, guarded, stderr
 from btplan.cli.console import escape
 from btplan.cli.outputs import Output, check_outputs
 from btplan.cli.run import Sim
-from btplan.errors import InputError, Span
+from btplan.errors import BtplanError, InputError, Span
 
 if TYPE_CHECKING:
-    from btplan.sweep.runs import Row
+    from rich.progress import Progress, TaskID
 
+    from btplan.sweep import pool
+    from btplan.sweep.runs import Job, Row
 
 
 @contextlib.contextmanager
@@ -46,6 +46,34 @@ def _terminate_like_ctrl_c() -> Iterator[list[int]]:
         yield received
     finally:
         signal.signal(signal.SIGTERM, previous)
+
+
+def _explain(job: Job, rows: list[Row], execute: Callable[[list[pool.Run], list[Row]], None],
+              progress: Progress, task: TaskID) -> None:
+    """Name the cause of every failed run (btplan.sweep.explain), rerunning the seeds
+    that need it with replan-unlimited; those reruns are not rows of the output."""
+    from btplan.sweep import explain
+
+    reference = explain.references(rows)
+    todo = explain.needed(rows)
+    if todo and job.sim == "symbolic" and _baselines_apply(job):
+        progress.update(task, total=(progress.tasks[0].total or 0) + len(todo))
+        extra: list[Row] = []
+        execute(todo, extra)
+        reference.update(explain.references(extra))
+    explain.label(rows, reference)
+
+
+def _baselines_apply(job: Job) -> bool:
+    from btplan.acting.baselines import check_strips, require_pyperplan
+    from btplan.sweep.runs import prepared
+
+    try:
+        require_pyperplan()
+        check_strips(prepared(job)[0])
+    except BtplanError:
+        return False
+    return True
 
 
 def parse_seeds(text: str) -> range:
@@ -114,7 +142,7 @@ def sweep(
         metavar="PROBLEM", help="Problem file, when it is not in DOMAIN.", show_default=False)
     ] = None,
     scenario: Annotated[str, typer.Option(
-        metavar="NAME", help="undo, obstacle, towers, packages, scene; a spec file with {p} for the rate; "
+        metavar="NAME", help="undo, obstacle, towers, packages, scene, shove; a spec file with {p} for the rate; "
              "or module:attribute.")] = "undo",
     method: Annotated[str, typer.Option(
         metavar="M,...", help="btplan, btplan-paper, replan, repair, replan-unlimited.")
@@ -151,8 +179,8 @@ def sweep(
 
     from btplan.acting.baselines import BASELINES, require_pyperplan
     from btplan.shipped import resolve
-    from btplan.sweep import output, pool
-    from btplan.sweep.runs import Job, check_methods, prepared
+    from btplan.sweep import explain, output, pool
+    from btplan.sweep.runs import Job, check_methods, check_sim, prepared
     from btplan.sweep.stats import summarize
 
     files = [resolve(domain)] if problem is None else [resolve(domain), problem]
@@ -170,6 +198,7 @@ def sweep(
     output.check_output(output_path)
     job = Job(tuple(files), scenario, sim.value, max_ticks)
     prepared(job)  # bad domain files or scenarios are refused here, not in every worker
+    check_sim(job)
     runs = [(m, r, s) for r in rate_list for m in methods for s in seed_range]
     rows: list[Row] = []
     interrupted = False
@@ -178,24 +207,31 @@ def sweep(
                   console=stderr.rich, disable=quiet, transient=True) as progress:
         task = progress.add_task("runs", total=len(runs))
 
-        def on_row(row: Row) -> None:
-            rows.append(row)
-            progress.advance(task)
+        def execute(todo: list[pool.Run], into: list[Row]) -> None:
+            def on_row(row: Row) -> None:
+                into.append(row)
+                progress.advance(task)
+
+            if ray is not None:
+                pool.run_ray(job, todo, on_row, None if ray == LOCAL else ray, jobs or None)
+            elif (jobs or os.cpu_count() or 1) == 1 and timeout is None:
+                pool.run_serial(job, todo, on_row)
+            else:  # a run that must be stopped needs a process of its own
+                pool.run_local(job, todo, on_row, jobs or os.cpu_count() or 1, timeout)
 
         try:
             with _terminate_like_ctrl_c() as terminated:
-                if ray is not None:
-                    pool.run_ray(job, runs, on_row, None if ray == LOCAL else ray,
-                                 jobs or None)
-                elif (jobs or os.cpu_count() or 1) == 1 and timeout is None:
-                    pool.run_serial(job, runs, on_row)
-                else:  # a run that must be stopped needs a process of its own
-                    pool.run_local(job, runs, on_row, jobs or os.cpu_count() or 1, timeout)
+                execute(runs, rows)
+                _explain(job, rows, execute, progress, task)
         except KeyboardInterrupt:
             interrupted = True
     output.write_rows(output_path, rows)
     points = summarize(rows)
     stderr.print(escape(output.markdown_table(points)), end="")
+    causes = explain.markdown(rows)
+    if causes:
+        stderr.print("failed runs by cause (replan-unlimited rerun on the same seed):")
+        stderr.print(escape(causes), end="")
     if plot is not None and points:
         output.plot(points, plot)
     if interrupted:

@@ -58,7 +58,7 @@ def write_rows(path: str, rows: Sequence[Row]) -> None:
     writer = csv.DictWriter(buffer, fieldnames=COLUMNS, lineterminator="\n")
     writer.writeheader()
     for row in ordered:
-        writer.writerow({k: row[k] for k in COLUMNS})
+        writer.writerow({k: row.get(k) for k in COLUMNS})  # older rows lack newer columns
     write_atomic(path, buffer.getvalue())
 
 
@@ -67,7 +67,7 @@ def _write_parquet(path: str, rows: Sequence[Row]) -> None:
     import pyarrow as pa
     import pyarrow.parquet as pq  # type: ignore[import-untyped]
 
-    table = pa.Table.from_pylist([{k: r[k] for k in COLUMNS} for r in rows])
+    table = pa.Table.from_pylist([{k: r.get(k) for k in COLUMNS} for r in rows])
     target = Path(path)
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp",
                                dir=target.parent if str(target.parent) else ".")
@@ -96,14 +96,17 @@ def read_rows(path: str) -> list[Row]:
                 "ticks": int(r["ticks"]), "actions": int(r["actions"]),
                 "planner_calls": int(r["planner_calls"]),
                 "planning_seconds": float(r["planning_seconds"]),
+                "setup_seconds": (float(r["setup_seconds"]) if r.get("setup_seconds")
+                                  else None),
                 "checks": float(r["checks"]), "disturbances": int(r["disturbances"]),
+                "reason": r.get("reason") or "", "cause": r.get("cause") or "",
                 "error": r["error"],
             })
         return out
 
 
 HEADER = ("scenario", "method", "rate", "runs", "success", "ticks to goal",
-          "planner calls", "planning ms (CPU)", "checks/tick", "errors")
+          "planner calls", "planning ms (CPU)", "setup ms (CPU)", "checks/tick", "errors")
 
 
 def table_cells(points: Sequence[Point]) -> list[tuple[str, ...]]:
@@ -113,7 +116,8 @@ def table_cells(points: Sequence[Point]) -> list[tuple[str, ...]]:
         cells.append((p.scenario, p.method, f"{p.rate:g}", str(p.runs),
                       _percent(p.success),
                       p.ticks.text(digits=0), p.planner_calls.text(digits=0),
-                      p.planning_ms.text(digits=2), p.checks.text(digits=1), str(p.errors)))
+                      p.planning_ms.text(digits=2), p.setup_ms.text(digits=2),
+                      p.checks.text(digits=1), str(p.errors)))
     return cells
 
 
@@ -125,7 +129,7 @@ def _percent(e: Estimate) -> str:
 
 def markdown_table(points: Sequence[Point]) -> str:
     lines = ["| " + " | ".join(HEADER) + " |",
-             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+             "|---|---|" + "---:|" * (len(HEADER) - 2)]
     lines += ["| " + " | ".join(c) + " |" for c in table_cells(points)]
     return "\n".join(lines) + "\n"
 

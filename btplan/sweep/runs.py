@@ -9,6 +9,7 @@ error, never a missing row.
 from __future__ import annotations
 
 import functools
+import time
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -22,10 +23,14 @@ from btplan.sweep.scenarios import Scenario, resolve
 METHODS = ("btplan", "btplan-paper", *BASELINES)
 
 COLUMNS = ("scenario", "method", "rate", "seed", "success", "ticks", "actions",
-           "planner_calls", "planning_seconds", "checks", "disturbances", "error")
-"""One row per run; `checks` is condition checks per tick, `planning_seconds` CPU time."""
+           "planner_calls", "planning_seconds", "setup_seconds", "checks", "disturbances",
+           "reason", "cause", "error")
+"""One row per run; `checks` is condition checks per tick. `planning_seconds` is the CPU
+time of the expansions or searches, `setup_seconds` that of what depends on the task
+only (grounding, relaxed model, mutexes), built before acting. `reason` is how the run
+ended; `cause`, for a failed run, names why (btplan.sweep.explain)."""
 
-TIMED = ("planning_seconds",)
+TIMED = ("planning_seconds", "setup_seconds")
 """Columns that vary between two runs of the same seed (everything else repeats)."""
 
 Row = dict[str, Any]
@@ -64,6 +69,11 @@ def check_methods(methods: list[str], sim: str) -> None:
                              Span("--method", 1, 1), "use --method btplan with --sim pybullet")
 
 
+def check_sim(job: Job) -> None:
+    """Refuse a scenario whose agents the chosen world cannot serve, before any run."""
+    resolve(job.scenario).check_sim(job.sim)
+
+
 def empty_row(job: Job, method: str, rate: float, seed: int, error: str) -> Row:
     try:
         scenario = resolve(job.scenario).name
@@ -71,7 +81,8 @@ def empty_row(job: Job, method: str, rate: float, seed: int, error: str) -> Row:
         scenario = job.scenario
     return {"scenario": scenario, "method": method, "rate": rate, "seed": seed,
             "success": False, "ticks": 0, "actions": 0, "planner_calls": 0,
-            "planning_seconds": 0.0, "checks": 0.0, "disturbances": 0, "error": error}
+            "planning_seconds": 0.0, "setup_seconds": 0.0, "checks": 0.0, "disturbances": 0,
+            "reason": "", "cause": "", "error": error}
 
 
 def run_one(job: Job, method: str, rate: float, seed: int) -> Row:
@@ -83,7 +94,8 @@ def run_one(job: Job, method: str, rate: float, seed: int) -> Row:
         return empty_row(job, method, rate, seed, f"{type(error).__name__}: {error}")
     except Exception as error:  # a bug in one run must not sink the sweep
         return empty_row(job, method, rate, seed, f"{type(error).__name__}: {error}")
-    row.update(scenario=scenario.name, method=method, rate=rate, seed=seed, error="")
+    row.update(scenario=scenario.name, method=method, rate=rate, seed=seed, cause="",
+               error="")
     return row
 
 
@@ -101,20 +113,25 @@ def _world(job: Job, task: Task, seed: int) -> tuple[Any, list[Any]]:
 def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: str,
              rate: float, seed: int) -> Row:
     world, scene_agents = _world(job, task, seed)
-    agents = [*scenario.agents(task, rate, seed), *scene_agents]
     try:
+        agents = [*scenario.agents_in(world, job.sim, task, rate, seed), *scene_agents]
         if method in BASELINES:
             out = run_baseline(task, world, agents, method, max_ticks)
             return {"success": out.reached, "ticks": out.ticks, "actions": out.actions,
                     "planner_calls": out.planner_calls,
                     "planning_seconds": out.planning_seconds,
+                    "setup_seconds": out.setup_seconds,
                     "checks": out.checks / max(out.ticks, 1),
-                    "disturbances": out.disturbances}
+                    "disturbances": out.disturbances, "reason": out.reason}
         options = (PlannerOptions.paper(stall_limit=max_ticks) if method == "btplan-paper"
                    else replace(acting.ACTING_OPTIONS, stall_limit=max_ticks,
                                 expansions_per_tick=EXPANSIONS))
+        started = time.process_time()
+        models = acting.task_models(task, options)
+        setup = time.process_time() - started
         outcome = acting.run(task, agents=agents, world=world, seed=seed,
-                             max_ticks=max_ticks, options=options)
+                             max_ticks=max_ticks, options=options, models=models,
+                             look_ahead=method == "btplan")
     finally:
         if hasattr(world, "close"):
             world.close()
@@ -124,5 +141,7 @@ def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: s
             "actions": len(outcome.executed),
             "planner_calls": sum(len(r.expansions) for r in records),
             "planning_seconds": sum(r.planning_seconds for r in records),
+            "setup_seconds": setup,
             "checks": checks / max(outcome.ticks, 1),
-            "disturbances": sum(len(r.disturbances) for r in records)}
+            "disturbances": sum(len(r.disturbances) for r in records),
+            "reason": outcome.reason}

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from btplan.errors import InputError, Span
 from btplan.model import Task
-from btplan.worlds.agents import Agent, agents_from_specs
+from btplan.worlds.agents import Agent, agents_from_specs, check_world
 from btplan.worlds.disturb import DisturbSpec, check_specs, parse_spec
 from btplan.worlds.meddlers import BlockPath, MovePackage, ToppleTower
 
@@ -43,6 +43,8 @@ class Scenario:
     meddlers: Meddlers = field(default=_no_meddlers)
     min_duration: int = 1
     max_ticks: int = 400
+    sims: tuple[str, ...] = ("symbolic",)
+    """The worlds its agents can act in (`meddlers` set symbolic facts)."""
 
     def prepare(self, task: Task) -> Task:
         """The task as this scenario runs it (actions stretched to `min_duration`)."""
@@ -60,6 +62,20 @@ class Scenario:
 
     def check(self, task: Task) -> None:
         check_specs(self.disturb_specs(0.5), task)
+
+    def check_sim(self, sim: str) -> None:
+        """Refuse, before any run, a scenario whose agents the `sim` world cannot serve."""
+        if sim not in self.sims:
+            raise InputError(f"the scenario '{self.name}' runs in the "
+                             f"{' or '.join(self.sims)} world only", Span("--scenario", 1, 1),
+                             "with --sim pybullet use --scenario scene or shove, or a spec "
+                             "file of disturbances the simulator can carry out")
+
+    def agents_in(self, world: object, sim: str, task: Task, rate: float,
+                  seed: int) -> list[Agent]:
+        """`agents`, once `world` is known to carry out every spec (a located error if not)."""
+        check_world(self.disturb_specs(rate), world, f"the {sim} world")
+        return self.agents(task, rate, seed)
 
     def agents(self, task: Task, rate: float, seed: int) -> list[Agent]:
         """Spec agents first, then the others: the order they act in every tick."""
@@ -79,6 +95,12 @@ def _packages(task: Task, rate: float, seed: int) -> list[Agent]:
     return [MovePackage(rate, seed, task.objects_of("package"))]
 
 
+def _shove(task: Task, rate: float, seed: int) -> list[Agent]:
+    from btplan.worlds.pybullet.agents import Shove
+
+    return [Shove(rate, seed)]
+
+
 BUILTIN: dict[str, Scenario] = {s.name: s for s in (
     Scenario("undo", "the robot's last action is undone at rate p", ("undo@p={p}",)),
     Scenario("obstacle", "Example 2: undo at rate p, and the sphere rolls onto the free "
@@ -88,7 +110,10 @@ BUILTIN: dict[str, Scenario] = {s.name: s for s in (
     Scenario("packages", "logistics: a package on the ground is carried to another place of "
              "its city at rate p", meddlers=_packages, min_duration=2),
     Scenario("scene", "the simulator scene's own events (PyBullet); the rate is only recorded",
-             max_ticks=3000),
+             max_ticks=3000, sims=("symbolic", "pybullet")),
+    Scenario("shove", "PyBullet: the scene's own events, and a hand takes a cube the robot "
+             "does not hold to a random free spot of the floor at rate p",
+             meddlers=_shove, max_ticks=3000, sims=("pybullet",)),
 )}
 
 
@@ -121,6 +146,7 @@ def _from_file(path: Path) -> Scenario:
         body = line.split("#", 1)[0].strip()
         if body:
             specs.append(body)
-    scenario = Scenario(path.stem, f"specs of {path.name}", tuple(specs))
+    scenario = Scenario(path.stem, f"specs of {path.name}", tuple(specs),
+                        sims=("symbolic", "pybullet"))
     scenario.disturb_specs(0.5)  # a malformed spec is refused before any run
     return scenario

@@ -85,6 +85,8 @@ class Point:
     planner_calls: Estimate
     planning_ms: Estimate
     checks: Estimate
+    setup_ms: Estimate = NAN
+    """Task set-up before acting (grounding, models); "-" for rows written without it."""
 
 
 def summarize(rows: Sequence[Row]) -> list[Point]:
@@ -103,5 +105,7 @@ def summarize(rows: Sequence[Row]) -> list[Point]:
             median_interval(float(r["planner_calls"]) for r in ok),
             median_interval(1000 * float(r["planning_seconds"]) for r in ok),
             median_interval(float(r["checks"]) for r in ok),
+            median_interval(1000 * float(r["setup_seconds"]) for r in ok
+                            if r.get("setup_seconds") is not None),
         ))
     return points

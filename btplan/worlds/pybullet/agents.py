@@ -8,6 +8,8 @@ ticks on which it becomes true, and fires `delay` ticks after the `count`-th tim
 
 from __future__ import annotations
 
+import math
+import random
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from difflib import get_close_matches
@@ -160,3 +162,60 @@ def apply(world: SceneState, hand: AgentHand | None, event: Event) -> str:
         world.sim.moved()
         return f"{event.name}: {cube} slipped from the gripper"
     return f"{event.name}: {cube} was not in the gripper"
+
+
+SPOT_TRIES = 20
+"""Random spots tried for a shoved cube before the agent gives up for this tick."""
+
+
+class Shove:
+    """At rate `rate` per tick, a hand takes a cube the robot does not hold to a random
+    free spot of the floor: the simulator's counterpart of the symbolic scenarios'
+    agents, for sweeps over a rate (`--scenario shove`).
+
+    It draws from its own stream seeded by the run's seed, three numbers every tick
+    whatever happens, and binds to the world it is first given (the acting loop passes
+    the world to every agent).
+    """
+
+    name = "shove"
+
+    def __init__(self, rate: float, seed: int) -> None:
+        self.rate = rate
+        self.rng = random.Random(seed * 7919 + 303)
+        self.hand: AgentHand | None = None
+
+    def act(self, world: object, tick: int) -> list[Disturbance]:
+        fire, pick, spot_seed = self.rng.random(), self.rng.random(), self.rng.random()
+        state = getattr(world, "state", None)
+        if not isinstance(state, SceneState):
+            return []
+        if self.hand is None:
+            self.hand = AgentHand(state)
+        done = [Disturbance(tick, self.name, t, "scene") for t in self.hand.advance()]
+        if fire >= self.rate or self.hand.busy:
+            return done
+        cubes = sorted(set(state.floor_cubes()) - state.carried)
+        if not cubes:
+            return done
+        cube = cubes[int(pick * len(cubes))]
+        spot = _free_spot(state, cube, spot_seed)
+        if spot is not None:
+            self.hand.take(f"shove {cube}", cube, spot)
+            done.append(Disturbance(tick, self.name,
+                                    f"takes {cube} to ({spot[0]:.2f}, {spot[1]:.2f})", "scene"))
+        return done
+
+
+def _free_spot(state: SceneState, cube: str, seed: float) -> tuple[float, float] | None:
+    """A random spot of the floor where `cube` fits, away from the robot."""
+    rng = random.Random(seed)
+    x0, x1, y0, y1 = state.scene.bounds
+    others = [c for c in state.floor_cubes(cube) if c not in state.carried]
+    keep = state.scene.robot_radius + state.scene.cube_size
+    for _ in range(SPOT_TRIES):
+        x, y = rng.uniform(x0, x1), rng.uniform(y0, y1)
+        if (math.dist((x, y), state.base[:2]) > keep
+                and state.sim.cube_fits(x, y, others)):
+            return (x, y)
+    return None

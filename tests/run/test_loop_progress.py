@@ -1,0 +1,40 @@
+"""Going round in circles is told apart from facts that come and go while an action runs."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from btplan.acting.loop import BlendedLoop
+from btplan.bt import RUNNING, Status
+from btplan.bt.leaves import LeafKey
+from btplan.lang import load
+from btplan.model import Atom
+from btplan.worlds.symbolic import SymbolicWorld
+
+DOMAIN = Path(__file__).resolve().parents[2] / "domains" / "pick_place.bt"
+PASSING = Atom("near", ("cube",))
+
+
+class Flicker(SymbolicWorld):
+    """As in a simulator: while the robot drives to the goal, it passes the cube again,
+    so `near(cube)` comes and goes with nothing completed in between."""
+
+    def step(self, key: LeafKey) -> Status:
+        status = super().step(key)
+        if status is RUNNING and key[0] == "MoveTo" and key[1][0] == "goal":
+            if PASSING in self.facts():
+                self.clear_fact(PASSING)
+            else:
+                self.set_fact(PASSING)
+        return status
+
+
+def test_facts_that_flicker_while_an_action_runs_are_not_a_loop() -> None:
+    task = load([str(DOMAIN)])
+    slow = tuple(a.model_copy(update={"duration": 6}) if a.name == "MoveTo" else a
+                 for a in task.domain.actions)
+    task = task.model_copy(update={"domain": task.domain.model_copy(update={"actions": slow})})
+    world = Flicker(task)
+    result = BlendedLoop(task, world).run(100)
+    assert result.reached
+    assert [str(a) for a in world.executed][-1] == "Place(cube, goal)"
