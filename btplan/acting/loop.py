@@ -107,7 +107,9 @@ class BlendedLoop:
     until no conflict is left. A condition without achievers is skipped in favour of
     the next failed one; if none has achievers, NoAchieverError names them. When the
     world comes back to a state it was in, with no expansion in between and no
-    outside change, the loop is going round in circles: NoProgressError.
+    outside change, the loop is going round in circles: NoProgressError. An outside
+    change is one seen between two ticks, or one a world counts in `outside_changes`
+    (agents that act while the robot does, as in the PyBullet world).
     """
 
     def __init__(
@@ -130,6 +132,7 @@ class BlendedLoop:
         self._circular: set[GroundLiteral] = set()
         self._seen: set[tuple[frozenset[Atom], int]] = set()
         self._last_state: frozenset[Atom] | None = None
+        self._outside = 0
         self._stalls = 0
         self.premature_successes = 0
         check = goal_check(self.tree)
@@ -174,6 +177,12 @@ class BlendedLoop:
                 self._stall()
             break
         after = self.world.facts()
+        outside = int(getattr(self.world, "outside_changes", 0))
+        if outside != self._outside:
+            # Someone else acted while the tree ticked (a world whose agents move at
+            # the same time as the robot): a repeated state is no longer a loop.
+            self._outside = outside
+            self._seen.clear()
         if after != before:
             key = (after, len(self.expansions))
             if key in self._seen:

@@ -2,7 +2,8 @@
 
 The paper's Youbot experiment has two agents that move cubes while the robot works; a
 scene lists such events so that a user can change the story without code. Each event
-fires once. A `when` event watches a literal through the world's own `check`, counts the
+fires once. `move` and `remove` act physically, through the pusher robot (pusher.py);
+`slip` and `teleport` act on the scene directly. A `when` event watches a literal through the world's own `check`, counts the
 ticks on which it becomes true, and fires `delay` ticks after the `count`-th time.
 """
 
@@ -16,7 +17,7 @@ from pathlib import Path
 from btplan.errors import InputError, Span
 from btplan.limits import shorten
 from btplan.worlds.agents import Disturbance
-from btplan.worlds.pybullet.hand import AgentHand
+from btplan.worlds.pybullet.pusher import Pusher
 from btplan.worlds.pybullet.scene import Event
 from btplan.worlds.pybullet.state import SceneState
 
@@ -48,7 +49,7 @@ class ScriptedEvent:
     due: int | None = None
     done: bool = False
 
-    def act(self, world: SceneState, hand: AgentHand | None, check: Check,
+    def act(self, world: SceneState, pusher: Pusher | None, check: Check,
             tick: int) -> list[str]:
         """Fire the event when it is due; returns what happened, in words."""
         if self.done:
@@ -58,7 +59,7 @@ class ScriptedEvent:
         if self.due is None or tick < self.due:
             return []
         self.done = True
-        return [apply(world, hand, self.event)]
+        return [apply(world, pusher, self.event)]
 
     def _due(self, check: Check, tick: int) -> int | None:
         if self.event.tick is not None:
@@ -87,22 +88,22 @@ class SceneAgents:
     name: str = "scene"
     state: SceneState | None = None
     check: Check | None = None
-    hand: AgentHand | None = None
+    pusher: Pusher | None = None
 
     def bind(self, state: SceneState, check: Check) -> None:
         self.state, self.check = state, check
         if any(e.event.do in ("move", "remove") for e in self.events):
-            self.hand = AgentHand(state)
+            self.pusher = Pusher(state)
 
     def act(self, world: object, tick: int) -> list[Disturbance]:
         if self.state is None or self.check is None:
             return []
         state, check = self.state, self.check
         happened = [Disturbance(tick, self.name, text, "scene")
-                    for e in self.events for text in e.act(state, self.hand, check, tick)]
-        if self.hand is not None:
+                    for e in self.events for text in e.act(state, self.pusher, check, tick)]
+        if self.pusher is not None:
             happened += [Disturbance(tick, self.name, text, "scene")
-                         for text in self.hand.advance()]
+                         for text in self.pusher.news()]
         self.log.extend(happened)
         return happened
 
@@ -145,16 +146,14 @@ def _locate(lines: list[str], path: str, text: str) -> tuple[Span, str | None]:
     return Span(path, 1, 1), None
 
 
-def apply(world: SceneState, hand: AgentHand | None, event: Event) -> str:
-    """Carry out one event on the world (or start it, for the hand) and describe it."""
+def apply(world: SceneState, pusher: Pusher | None, event: Event) -> str:
+    """Carry out one event on the world (or start it, for the pusher) and describe it."""
     cube = event.cube
     if event.do == "teleport":
         world.put(cube, event.to)
         return f"{event.name}: {cube} teleported to {event.to}"
-    if event.do in ("move", "remove") and hand is not None:
-        hand.take(event.name, cube, event.to if event.do == "move" else None)
-        where = f"to {event.to}" if event.do == "move" else "away"
-        return f"{event.name}: the agent's hand takes {cube} {where}"
+    if event.do in ("move", "remove") and pusher is not None:
+        return pusher.take(event.name, cube, event.to, event.origin, event.do == "remove")
     if world.held == cube:
         world.sim.robot.slip()
         world.sim.moved()

@@ -75,9 +75,11 @@ class Event:
 
     It fires at `tick`, or `delay` ticks after the `count`-th time the literal `when`
     (an atom such as `holding(green)`, optionally prefixed by `not`) becomes true.
-    `do` is `move` (an agent's hand carries `cube` to `to` and drops it there), `remove`
-    (the hand carries it out of the scene), `slip` (the robot's grip fails and the cube
-    falls) or `teleport` (`cube` jumps to `to`, or out of the scene without `to`: tests).
+    `do` is `move` (the agents' pusher pushes `cube` along the floor to `to`; a cube not
+    in the scene is first set down at `origin`, outside it), `remove` (the pusher pushes it
+    to `to`, or away from the robot, and it leaves the scene once past the bounds), `slip`
+    (the robot's grip fails and the cube falls) or `teleport` (`cube` jumps to `to`, or out
+    of the scene without `to`: tests).
     """
 
     name: str
@@ -88,6 +90,7 @@ class Event:
     when: str | None = None
     count: int = 1
     delay: int = 0
+    origin: Point | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -120,7 +123,7 @@ KEYS: dict[str, tuple[str, ...]] = {
     "wall": ("name", "center", "size", "height"),
     "cube": ("name", "at", "color"),
     "region": ("name", "min", "max", "aside", "color"),
-    "event": ("name", "when", "tick", "count", "delay", "do", "cube", "to"),
+    "event": ("name", "when", "tick", "count", "delay", "do", "cube", "to", "from"),
 }
 """The keys each table may have; anything else is a typo worth reporting."""
 _LITERAL = re.compile(r"^\s*(not\s+)?[A-Za-z_]\w*\s*(\(\s*(\w+\s*(,\s*\w+\s*)*)?\))?\s*$")
@@ -286,12 +289,13 @@ class _Reader:
                             str(when),
                             "write it as in the domain, e.g. holding(green) or not near(goal)")
         to = self.point(t["to"], "to") if "to" in t else None
+        origin = self.point(t["from"], "from") if "from" in t else None
         if do == "move" and to is None:
             raise self.fail(f"event '{shown}': a move needs 'to = [x, y]'", name)
         tick = int(self.scalar(t, "tick", 0, whole=True)) if "tick" in t else None
         count = int(self.scalar(t, "count", 1, whole=True, least=1))
         delay = int(self.scalar(t, "delay", 0, whole=True))
-        return Event(name, do, cube, to, tick, when, count, delay)
+        return Event(name, do, cube, to, tick, when, count, delay, origin)
 
     def check_names(self, scene: Scene) -> None:
         seen: set[str] = set()

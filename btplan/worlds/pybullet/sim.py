@@ -14,7 +14,7 @@ import math
 import os
 import sys
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import Any
 
 from btplan.errors import WorldError
@@ -92,6 +92,10 @@ class Sim:
                                     physicsClientId=self.client)
         self.steps = 0
         self.physics_seconds = 0.0
+        self.outside_changes = 0
+        """Physics steps in which someone other than the robot moved a cube."""
+        self.controllers: list[Callable[[], None]] = []
+        """Called before every physics step: bodies driven by velocity (the agents' pusher)."""
         self._positions: dict[str, tuple[float, float, float]] = {}
         self.memo: dict[object, object] = {}
         """Values derived from the scene (who holds what), valid until it changes."""
@@ -171,6 +175,8 @@ class Sim:
 
     def step(self) -> None:
         """One physics step of 1/240 s (its wall time is kept for bench/sim.py)."""
+        for control in self.controllers:
+            control()
         began = time.perf_counter()
         self.p.stepSimulation(physicsClientId=self.client)
         self.physics_seconds += time.perf_counter() - began

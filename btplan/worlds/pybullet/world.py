@@ -170,6 +170,11 @@ class PyBulletWorld:
             "arm_ompl_seconds": round(self.timings.ompl, 3),
         }
 
+    @property
+    def outside_changes(self) -> int:
+        """Physics steps in which the scene's agents pushed a cube (read by the loop)."""
+        return self.state.sim.outside_changes
+
     def scene_agents(self) -> list[SceneAgents]:
         """The scene's scripted external events, as one agent acting before each tick."""
         return [self.agents]

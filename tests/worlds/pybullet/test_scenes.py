@@ -38,7 +38,7 @@ TAKEN = """
 [[event]]
 name = "agent takes green from under the hand"
 when = "near(green)"
-delay = 4
+delay = 0
 do = "move"
 cube = "green"
 to = [3.0, -1.0]
