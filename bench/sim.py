@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -54,6 +55,7 @@ def main() -> None:
     parser.add_argument("--seeds", default="0:10", help="A:B, seeds A to B-1")
     args = parser.parse_args()
     first, last = (int(x) for x in args.seeds.split(":"))
+    print(f"load average (1, 5, 15 min) at the start: {os.getloadavg()}")
     print("| " + " | ".join(COLUMNS) + " |")
     print("|" + "---|" * len(COLUMNS))
     totals = {"sim": 0.0, "wall": 0.0, "physics": 0.0}
@@ -70,7 +72,8 @@ def main() -> None:
         totals["sim"] += r["sim_seconds"]
         totals["wall"] += r["wall"]
         totals["physics"] += r["physics_seconds"]
-    print(f"\nall seeds: {totals['sim']:.1f} s simulated in {totals['wall']:.1f} s wall = "
+    print(f"\nload average (1, 5, 15 min) at the end: {os.getloadavg()}")
+    print(f"all seeds: {totals['sim']:.1f} s simulated in {totals['wall']:.1f} s wall = "
           f"{totals['sim'] / totals['wall']:.1f}x real time; physics alone "
           f"{totals['sim'] / max(totals['physics'], 1e-9):.1f}x real time")
 

@@ -33,12 +33,15 @@ Point = tuple[float, float]
 
 @dataclass(frozen=True, slots=True)
 class Box:
-    """A static wall or piece of furniture: an axis-aligned box on the floor."""
+    """A static wall or piece of furniture: an axis-aligned box on the floor, or, with
+    `z` above 0, a board whose underside is at that height (a shelf the arm must reach
+    under; the base and its folded arm stay clear of anything lower than 1 m)."""
 
     name: str
     center: Point
     size: Point
     height: float = 0.4
+    z: float = 0.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -120,7 +123,7 @@ KEYS: dict[str, tuple[str, ...]] = {
     "": ("world", "robot", "wall", "cube", "region", "event"),
     "world": ("bounds", "tick_seconds", "speed", "cube_size"),
     "robot": ("start", "radius", "near"),
-    "wall": ("name", "center", "size", "height"),
+    "wall": ("name", "center", "size", "height", "z"),
     "cube": ("name", "at", "color"),
     "region": ("name", "min", "max", "aside", "color"),
     "event": ("name", "when", "tick", "count", "delay", "do", "cube", "to", "from"),
@@ -258,7 +261,7 @@ class _Reader:
         if min(size) <= 0:
             raise self.fail("a wall's 'size' must be positive", "size", f"got {list(size)}")
         return Box(self.name(t, "wall"), self.point(t.get("center"), "center"), size,
-                   self.scalar(t, "height", 0.4, least=0.01))
+                   self.scalar(t, "height", 0.4, least=0.01), self.scalar(t, "z", 0.0))
 
     def cube(self, t: dict[str, Any]) -> CubeSpec:
         at = self.point(t["at"], "at") if "at" in t else None

@@ -168,6 +168,7 @@ class PyBulletWorld:
             "arm_planning_seconds": round(self.timings.arm_planning, 3),
             "arm_ompl_solves": self.timings.ompl_solves,
             "arm_ompl_seconds": round(self.timings.ompl, 3),
+            "arm_ompl_followed": self.timings.ompl_followed,
         }
 
     @property

@@ -1,5 +1,6 @@
 """More scenes than the scripted run: other seeds, a cube taken while the arm reaches for
-it, an obstacle put back after it was cleared, and a run that cannot succeed.
+it, an obstacle put back after it was cleared, a shelf the arm must reach round, and a
+run that cannot succeed.
 
 Each ends with the goal reached, or with a clear error naming what failed.
 """
@@ -9,7 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from sim_scenes import YOUBOT, YOUBOT_SCENE, write_scene, youbot_task
+from sim_scenes import ROOT, YOUBOT, YOUBOT_SCENE, write_scene, youbot_task
 from test_youbot_scenario import act, names
 from typer.testing import CliRunner
 
@@ -100,3 +101,16 @@ def test_a_goal_cube_taken_away_for_good_ends_with_exit_1_naming_it(tmp_path: Pa
                                       "--max-ticks", "300"])
     assert result.exit_code == 1, result.output
     assert "green" in result.output
+
+
+def test_a_shelf_over_the_cube_makes_the_arm_reach_along_a_joint_space_plan() -> None:
+    """The straight joint move from the folded arm to the cube goes through the board."""
+    world = open_world(TASK, str(ROOT / "domains" / "scenes" / "youbot_shelf.toml"), seed=0)
+    try:
+        act(world, 300)
+        assert names(world.executed)[:3] == ["MoveTo(green)", "Pick(green)", "MoveTo(goal)"]
+        stats = world.stats()
+        assert stats["arm_ompl_followed"] >= 1     # the reach went along OMPL's path
+        assert world.check(("on", ("green", "goal")))
+    finally:
+        world.close()
