@@ -109,7 +109,10 @@ class BlendedLoop:
     world comes back to a state it was in, with no expansion in between and no
     outside change, the loop is going round in circles: NoProgressError. An outside
     change is one seen between two ticks, or one a world counts in `outside_changes`
-    (agents that act while the robot does, as in the PyBullet world).
+    (agents that act while the robot does, as in the PyBullet world). In a `continuous`
+    world, where facts change while an action runs (a robot driving past a cube), states
+    are compared only on ticks where an action ended: passing by the same place twice
+    within one action is not a loop, and a loop of actions still repeats its states there.
     """
 
     def __init__(
@@ -133,6 +136,7 @@ class BlendedLoop:
         self._seen: set[tuple[frozenset[Atom], int]] = set()
         self._last_state: frozenset[Atom] | None = None
         self._outside = 0
+        self._ended = 0
         self._stalls = 0
         self.premature_successes = 0
         check = goal_check(self.tree)
@@ -183,7 +187,10 @@ class BlendedLoop:
             # the same time as the robot): a repeated state is no longer a loop.
             self._outside = outside
             self._seen.clear()
-        if after != before:
+        ended = _actions_ended(self.world)
+        boundary = ended != self._ended or not getattr(self.world, "continuous", False)
+        self._ended = ended
+        if after != before and boundary:
             key = (after, len(self.expansions))
             if key in self._seen:
                 raise NoProgressError(self._loop_reason())
@@ -455,3 +462,8 @@ class BlendedLoop:
             False, max_ticks, self.expansions[start:], self.tree,
             f"the goal was not reached within {max_ticks} ticks",
         )
+
+
+def _actions_ended(world: object) -> int:
+    """How many actions the world has seen end (done, failed or halted), where it logs them."""
+    return sum(len(getattr(world, log, ())) for log in ("executed", "failed", "halted"))

@@ -171,6 +171,9 @@ class PyBulletWorld:
             "arm_ompl_followed": self.timings.ompl_followed,
         }
 
+    continuous = True
+    """Facts change while an action runs (read by the acting loop's check for loops)."""
+
     @property
     def outside_changes(self) -> int:
         """Physics steps in which the scene's agents pushed a cube (read by the loop)."""

@@ -7,6 +7,7 @@ Each ends with the goal reached, or with a clear error naming what failed.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
@@ -64,8 +65,8 @@ def test_a_cube_taken_while_the_arm_reaches_for_it_is_followed_and_picked(
 PUT_BACK = NO_EVENTS + """
 [[event]]
 name = "agent puts blue back in the doorway"
-when = "on(blue, storage)"
-delay = 10
+when = "holding(green)"
+count = 2
 do = "move"
 cube = "blue"
 to = [4.0, 0.0]
@@ -77,8 +78,15 @@ def test_an_obstacle_put_back_after_it_was_cleared_is_cleared_again(tmp_path: Pa
     world = open_world(TASK, write_scene(tmp_path, PUT_BACK), seed=0)
     try:
         loop, sizes, _ = act(world)
-        cleared = [a.args[0] for a in world.executed if a.name == "ClearPath"]
-        assert cleared == ["blue", "blue"]
+        log = [d.description for d in world.agents.log]
+        assert log[-1].startswith("agent puts blue back in the doorway: blue pushed to [4.00, 0.0")
+        # Blue blocked the way to the goal again: the robot went back for it and moved it
+        # off the doorway (through the blue subtree's ClearPath, halted once blue was held
+        # and the way clear again, then Drop).
+        assert names(world.executed)[-7:] == ["Drop(green)", "MoveTo(blue)", "Drop(blue)",
+                                              "MoveTo(green)", "Pick(green)", "MoveTo(goal)",
+                                              "Place(green, goal)"]
+        assert math.dist(world.state.location("blue"), (4.0, 0.0)) > 0.5
         assert sizes == sorted(sizes)
         assert world.check(("on", ("green", "goal")))
     finally:
