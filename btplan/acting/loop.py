@@ -116,8 +116,12 @@ class BlendedLoop:
     until no conflict is left. A condition without achievers is skipped in favour of
     the next failed one; if none has achievers, NoAchieverError names them. When the
     world comes back to a state it was in, with no expansion in between and no
-    outside change, the loop is going round in circles: NoProgressError (only states that
-    follow an ended action count; see `_actions_ended`).
+    outside change, the loop is going round in circles: NoProgressError. An outside
+    change is one seen between two ticks, or one a world counts in `outside_changes`
+    (agents that act while the robot does, as in the PyBullet world). In a `continuous`
+    world, where facts change while an action runs (a robot driving past a cube), states
+    are compared only on ticks where an action ended: passing by the same place twice
+    within one action is not a loop, and a loop of actions still repeats its states there.
     """
 
     def __init__(
@@ -150,6 +154,8 @@ class BlendedLoop:
         self._circular: set[GroundLiteral] = set()
         self._seen: set[tuple[frozenset[Atom], int]] = set()
         self._last_state: frozenset[Atom] | None = None
+        self._outside = 0
+        self._ended = 0
         self._stalls = 0
         self.premature_successes = 0
         self.searches = 0
@@ -175,7 +181,6 @@ class BlendedLoop:
 
     def tick(self) -> TickReport:
         before = self.world.facts()
-        ended = self._actions_ended()
         if before != self._last_state:
             self._seen.clear()  # an outside change: a repeated state is no longer a loop
         self.ticks += 1
@@ -203,10 +208,16 @@ class BlendedLoop:
                 self._stall()
             break
         after = self.world.facts()
-        # A state seen again is a loop only across actions that ended (see
-        # `_actions_ended`): while one action runs, a continuous world may pass a state twice.
-        if after != before and (ended is None or status is FAILURE
-                                or self._actions_ended() != ended):
+        outside = int(getattr(self.world, "outside_changes", 0))
+        if outside != self._outside:
+            # Someone else acted while the tree ticked (a world whose agents move at
+            # the same time as the robot): a repeated state is no longer a loop.
+            self._outside = outside
+            self._seen.clear()
+        ended = _actions_ended(self.world)
+        boundary = ended != self._ended or not getattr(self.world, "continuous", False)
+        self._ended = ended
+        if after != before and boundary:
             key = (after, len(self.expansions))
             if key in self._seen:
                 raise NoProgressError(self._loop_reason())
@@ -510,19 +521,6 @@ class BlendedLoop:
         mutexes = self.index.mutexes if self.options.mutexes else None
         return Judge(self.grounding, mutexes, frozenset(self._guards_seen))
 
-    def _actions_ended(self) -> int | None:
-        """Actions the world saw finish or fail (None: it keeps no log of them).
-
-        A state counts towards going round in circles only when it follows an ended
-        action: in a simulator the facts also change while an action runs (the robot
-        drives past a cube, and `near` comes and goes), which is progress, not a loop.
-        In the symbolic world facts change within a tick only when an action completes.
-        """
-        executed = getattr(self.world, "executed", None)
-        if executed is None:
-            return None
-        return len(executed) + len(getattr(self.world, "failed", ()))
-
     def _stall(self) -> None:
         """The tree failed with nothing to expand (an action failed): retry, a few times."""
         self._stalls += 1
@@ -579,3 +577,8 @@ class BlendedLoop:
             False, max_ticks, self.expansions[start:], self.tree,
             f"the goal was not reached within {max_ticks} ticks",
         )
+
+
+def _actions_ended(world: object) -> int:
+    """How many actions the world has seen end (done, failed or halted), where it logs them."""
+    return sum(len(getattr(world, log, ())) for log in ("executed", "failed", "halted"))

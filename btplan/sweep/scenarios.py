@@ -111,7 +111,7 @@ BUILTIN: dict[str, Scenario] = {s.name: s for s in (
              "its city at rate p", meddlers=_packages, min_duration=2),
     Scenario("scene", "the simulator scene's own events (PyBullet); the rate is only recorded",
              max_ticks=3000, sims=("symbolic", "pybullet")),
-    Scenario("shove", "PyBullet: the scene's own events, and a hand takes a cube the robot "
+    Scenario("shove", "PyBullet: the scene's own events, and a pusher pushes a cube the robot "
              "does not hold to a random free spot of the floor at rate p",
              meddlers=_shove, max_ticks=3000, sims=("pybullet",)),
 )}

@@ -19,6 +19,8 @@ class Flicker(SymbolicWorld):
     """As in a simulator: while the robot drives to the goal, it passes the cube again,
     so `near(cube)` comes and goes with nothing completed in between."""
 
+    continuous = True
+
     def step(self, key: LeafKey) -> Status:
         status = super().step(key)
         if status is RUNNING and key[0] == "MoveTo" and key[1][0] == "goal":

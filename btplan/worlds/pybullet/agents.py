@@ -2,7 +2,8 @@
 
 The paper's Youbot experiment has two agents that move cubes while the robot works; a
 scene lists such events so that a user can change the story without code. Each event
-fires once. A `when` event watches a literal through the world's own `check`, counts the
+fires once. `move` and `remove` act physically, through the pusher robot (pusher.py);
+`slip` and `teleport` act on the scene directly. A `when` event watches a literal through the world's own `check`, counts the
 ticks on which it becomes true, and fires `delay` ticks after the `count`-th time.
 """
 
@@ -18,7 +19,7 @@ from pathlib import Path
 from btplan.errors import InputError, Span
 from btplan.limits import shorten
 from btplan.worlds.agents import Disturbance
-from btplan.worlds.pybullet.hand import AgentHand
+from btplan.worlds.pybullet.pusher import Pusher
 from btplan.worlds.pybullet.scene import Event
 from btplan.worlds.pybullet.state import SceneState
 
@@ -50,7 +51,7 @@ class ScriptedEvent:
     due: int | None = None
     done: bool = False
 
-    def act(self, world: SceneState, hand: AgentHand | None, check: Check,
+    def act(self, world: SceneState, pusher: Pusher | None, check: Check,
             tick: int) -> list[str]:
         """Fire the event when it is due; returns what happened, in words."""
         if self.done:
@@ -60,7 +61,7 @@ class ScriptedEvent:
         if self.due is None or tick < self.due:
             return []
         self.done = True
-        return [apply(world, hand, self.event)]
+        return [apply(world, pusher, self.event)]
 
     def _due(self, check: Check, tick: int) -> int | None:
         if self.event.tick is not None:
@@ -89,22 +90,22 @@ class SceneAgents:
     name: str = "scene"
     state: SceneState | None = None
     check: Check | None = None
-    hand: AgentHand | None = None
+    pusher: Pusher | None = None
 
     def bind(self, state: SceneState, check: Check) -> None:
         self.state, self.check = state, check
         if any(e.event.do in ("move", "remove") for e in self.events):
-            self.hand = AgentHand(state)
+            self.pusher = Pusher(state)
 
     def act(self, world: object, tick: int) -> list[Disturbance]:
         if self.state is None or self.check is None:
             return []
         state, check = self.state, self.check
         happened = [Disturbance(tick, self.name, text, "scene")
-                    for e in self.events for text in e.act(state, self.hand, check, tick)]
-        if self.hand is not None:
+                    for e in self.events for text in e.act(state, self.pusher, check, tick)]
+        if self.pusher is not None:
             happened += [Disturbance(tick, self.name, text, "scene")
-                         for text in self.hand.advance()]
+                         for text in self.pusher.news()]
         self.log.extend(happened)
         return happened
 
@@ -147,16 +148,14 @@ def _locate(lines: list[str], path: str, text: str) -> tuple[Span, str | None]:
     return Span(path, 1, 1), None
 
 
-def apply(world: SceneState, hand: AgentHand | None, event: Event) -> str:
-    """Carry out one event on the world (or start it, for the hand) and describe it."""
+def apply(world: SceneState, pusher: Pusher | None, event: Event) -> str:
+    """Carry out one event on the world (or start it, for the pusher) and describe it."""
     cube = event.cube
     if event.do == "teleport":
         world.put(cube, event.to)
         return f"{event.name}: {cube} teleported to {event.to}"
-    if event.do in ("move", "remove") and hand is not None:
-        hand.take(event.name, cube, event.to if event.do == "move" else None)
-        where = f"to {event.to}" if event.do == "move" else "away"
-        return f"{event.name}: the agent's hand takes {cube} {where}"
+    if event.do in ("move", "remove") and pusher is not None:
+        return pusher.take(event.name, cube, event.to, event.origin, event.do == "remove")
     if world.held == cube:
         world.sim.robot.slip()
         world.sim.moved()
@@ -169,13 +168,13 @@ SPOT_TRIES = 20
 
 
 class Shove:
-    """At rate `rate` per tick, a hand takes a cube the robot does not hold to a random
-    free spot of the floor: the simulator's counterpart of the symbolic scenarios'
-    agents, for sweeps over a rate (`--scenario shove`).
+    """At rate `rate` per tick, a pusher of its own pushes a cube the robot does not hold
+    to a random free spot of the floor: the simulator's counterpart of the symbolic
+    scenarios' agents, for sweeps over a rate (`--scenario shove`).
 
     It draws from its own stream seeded by the run's seed, three numbers every tick
     whatever happens, and binds to the world it is first given (the acting loop passes
-    the world to every agent).
+    the world to every agent). A push takes many ticks; no new one starts until it ends.
     """
 
     name = "shove"
@@ -183,27 +182,26 @@ class Shove:
     def __init__(self, rate: float, seed: int) -> None:
         self.rate = rate
         self.rng = random.Random(seed * 7919 + 303)
-        self.hand: AgentHand | None = None
+        self.pusher: Pusher | None = None
 
     def act(self, world: object, tick: int) -> list[Disturbance]:
         fire, pick, spot_seed = self.rng.random(), self.rng.random(), self.rng.random()
         state = getattr(world, "state", None)
         if not isinstance(state, SceneState):
             return []
-        if self.hand is None:
-            self.hand = AgentHand(state)
-        done = [Disturbance(tick, self.name, t, "scene") for t in self.hand.advance()]
-        if fire >= self.rate or self.hand.busy:
+        if self.pusher is None:
+            self.pusher = Pusher(state)
+        done = [Disturbance(tick, self.name, t, "scene") for t in self.pusher.news()]
+        if fire >= self.rate or self.pusher.busy:
             return done
-        cubes = sorted(set(state.floor_cubes()) - state.carried)
+        cubes = sorted(set(state.floor_cubes()) - state.carried - {state.held})
         if not cubes:
             return done
         cube = cubes[int(pick * len(cubes))]
         spot = _free_spot(state, cube, spot_seed)
         if spot is not None:
-            self.hand.take(f"shove {cube}", cube, spot)
-            done.append(Disturbance(tick, self.name,
-                                    f"takes {cube} to ({spot[0]:.2f}, {spot[1]:.2f})", "scene"))
+            started = self.pusher.take(f"shove {cube}", cube, spot, None, False)
+            done.append(Disturbance(tick, self.name, started, "scene"))
         return done
 
 

@@ -29,6 +29,9 @@ SETTLE = 0.25          # s the arm may take to settle on its last target
 ARM_BUDGET = 0.3       # s OMPL may take for an arm motion
 AT = 0.02              # rad: close enough to a joint target
 LOW = 0.2              # m: a hand lower than this is lifted before the base moves
+DRAW_IN = 0.08         # m a held cube is drawn in towards the base as it is lifted
+HELD_IN = 0.04         # m inside `near` a held cube stays on a planned detour
+LEAVE = 0.15           # rad around the start of a detour where it may be farther out
 
 
 class Timings:
@@ -39,6 +42,8 @@ class Timings:
         self.arm_planning = 0.0
         self.ompl_solves = 0
         self.ompl = 0.0
+        self.ompl_followed = 0
+        """Arm motions that went along an OMPL joint-space path (not just checked by one)."""
 
 
 def obstacles(state: SceneState, *ignored: str | None) -> list[int]:
@@ -63,21 +68,54 @@ def plan_arm(state: SceneState, timings: Timings, goal: Q, *ignored: str | None
     robot, floor = state.sim.robot, state.sim.floor
     bodies = obstacles(state, *ignored)
 
+    # On a planned detour, a held cube stays within `near` of the base (or no farther than
+    # the motion's ends): what the robot holds stays near it, and the conditions do not
+    # flicker while the arm moves round things.
+    x, y, _ = state.base
+
+    def tip_distance(q: Q) -> float:
+        robot.set_arm(q)
+        tx, ty, _ = robot.tip()
+        return math.hypot(tx - x, ty - y)
+
+    saved = robot.arm_state()
+    start = saved[0]
+    reach: float | None = None
+    reach_start = 0.0
+
+    def touches(q: Q) -> bool:
+        return robot.arm_touches(q, bodies, floor, restore=False)
+
     def free(q: Q) -> bool:
-        return not robot.arm_touches(q, bodies, floor)
+        if touches(q):
+            return False
+        if reach is None:
+            return True
+        tx, ty, _ = robot.tip()
+        out = math.hypot(tx - x, ty - y)
+        # Farther out than that only close to the start, where the cube already is.
+        return out <= reach or (out <= reach_start and distance(q, start) < LEAVE)
 
     try:
-        start = robot.joints()
-        if not free(goal):
+        if touches(goal):
             return None
-        if straight_free(start, goal, free):
+        if straight_free(start, goal, lambda q: not touches(q)):
             return [start, goal]
+        if state.held is not None:  # only a planned detour could swing the cube away
+            reach = max(state.scene.near - HELD_IN, tip_distance(goal))
+            reach_start = tip_distance(start)
         timings.ompl_solves += 1
         plan = motion.plan_joints(start, goal, free, LOWER, UPPER, ARM_BUDGET)
         timings.ompl += plan.seconds if plan is not None else ARM_BUDGET
         return None if plan is None else list(plan.path)
     finally:
+        robot.restore(saved)
         timings.arm_planning += time.perf_counter() - began
+
+
+def distance(a: Q, b: Q) -> float:
+    """The largest joint difference: what a joint move takes time for."""
+    return max(abs(u - v) for u, v in zip(a, b))
 
 
 def straight_free(start: Q, goal: Q, free: Callable[[Q], bool]) -> bool:
@@ -105,19 +143,28 @@ def follow(state: SceneState, path: Sequence[Q]) -> Motion:
 
 def move_arm(state: SceneState, timings: Timings, goal: Q, *ignored: str | None) -> Motion:
     """Plan (straight or OMPL) and follow; False when no collision-free motion exists."""
+    solves = timings.ompl_solves
     path = plan_arm(state, timings, goal, *ignored)
     if path is None:
         return False
+    timings.ompl_followed += timings.ompl_solves > solves
     return (yield from follow(state, path))
 
 
 def clear_of_floor(state: SceneState, timings: Timings) -> Motion:
-    """Raise a low hand straight up before the base turns or drives."""
+    """Raise a low hand before the base turns or drives: up, and a little in towards the
+    base when it holds a cube, so that the cube is well within `near` from then on."""
     robot = state.sim.robot
     x, y, z = robot.tip()
     if z >= LOW:
         return True
-    up = solve(state, timings, (x, y, z + 0.15), robot.tip_yaw())
+    bx, by, _ = state.base
+    out = math.hypot(x - bx, y - by)
+    pull = min(DRAW_IN, max(0.0, out - 0.45)) / out if state.held is not None and out else 0.0
+    up = solve(state, timings, (x - (x - bx) * pull, y - (y - by) * pull, z + 0.15),
+               robot.tip_yaw())
+    if up is None:
+        up = solve(state, timings, (x, y, z + 0.15), robot.tip_yaw())
     if up is None:
         return False
     return (yield from follow(state, [robot.joints(), up]))

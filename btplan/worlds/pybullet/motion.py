@@ -134,6 +134,11 @@ def path_length(path: tuple[Pose2, ...]) -> float:
     return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in itertools.pairwise(path))
 
 
+SIMPLIFY_SECONDS = 0.1
+"""The most a joint-space path may be shortened for: each shortcut tried is checked
+for collision along its length, and the arm's checks are slow."""
+
+
 @dataclass(frozen=True, slots=True)
 class JointPlan:
     """A solved arm motion: joint vectors from start to goal, and OMPL's time."""
@@ -180,7 +185,7 @@ def plan_joints(
     try:
         if not (bool(setup.solve(budget)) and setup.haveExactSolutionPath()):
             return None
-        setup.simplifySolution()
+        setup.simplifySolution(SIMPLIFY_SECONDS)  # shortcuts cost collision checks
         raw = setup.getSolutionPath()
         points = tuple(tuple(raw.getState(k)[i] for i in range(n))
                        for k in range(raw.getStateCount()))

@@ -36,6 +36,7 @@ OPEN, SHUT = 0.04, 0.0
 FINGER_FORCE = 15.0
 TOUCH = 0.005                       # metres: a finger this close to a held cube touches it
 CONTACT = 0.0005                    # metres: and this close when the grasp is made
+HELD_MARGIN = 0.04                  # metres: a held cube's reach beyond the fingers
 IK_TOLERANCE = 0.01                 # metres between the IK target and where the tip ends up
 DOWN = (math.pi, 0.0, 0.0)          # roll-pitch-yaw of a hand pointing at the floor
 
@@ -104,10 +105,24 @@ class Robot:
         states = self.p.getJointStates(self.arm, list(ARM), physicsClientId=self.client)
         return tuple(float(s[0]) for s in states)
 
-    def set_arm(self, q: Sequence[float]) -> None:
-        """Teleport the arm's joints (collision checks and start-up only, never while acting)."""
-        for joint, value in zip(ARM, q):
-            self.p.resetJointState(self.arm, joint, value, physicsClientId=self.client)
+    def set_arm(self, q: Sequence[float], speeds: Sequence[float] | None = None) -> None:
+        """Teleport the arm's joints (collision checks and start-up only, never while acting).
+
+        One call for the seven joints: collision checks of arm motions make thousands.
+        """
+        self.p.resetJointStatesMultiDof(
+            self.arm, list(ARM), [[v] for v in q],
+            targetVelocities=[[v] for v in (speeds if speeds is not None else [0.0] * 7)],
+            physicsClientId=self.client)
+
+    def arm_state(self) -> tuple[tuple[float, ...], tuple[float, ...]]:
+        """Joint angles and speeds, so that a collision check can put the arm back as it was
+        (a check in the middle of a motion must not stop it)."""
+        states = self.p.getJointStates(self.arm, list(ARM), physicsClientId=self.client)
+        return tuple(float(s[0]) for s in states), tuple(float(s[1]) for s in states)
+
+    def restore(self, state: tuple[tuple[float, ...], tuple[float, ...]]) -> None:
+        self.set_arm(*state)
 
     def command(self, q: Sequence[float]) -> None:
         """Joint position targets for the arm; reached as the physics is stepped."""
@@ -144,7 +159,7 @@ class Robot:
         checked by forward kinematics, and None means the target is out of reach.
         """
         p = self.p
-        saved = self.joints()
+        saved = self.arm_state()
         orn = p.getQuaternionFromEuler([DOWN[0], DOWN[1], yaw])
         ranges = [u - lo for lo, u in zip(LOWER, UPPER)]
         try:
@@ -162,25 +177,36 @@ class Robot:
                 return None
             return solution
         finally:
-            self.set_arm(saved)
+            self.restore(saved)
 
-    def arm_touches(self, q: Sequence[float], bodies: Sequence[int], floor: int | None) -> bool:
-        """Whether the arm at `q` touches one of `bodies` or (apart from its base) the floor."""
+    def arm_touches(self, q: Sequence[float], bodies: Sequence[int], floor: int | None,
+                    restore: bool = True) -> bool:
+        """Whether the arm at `q` touches one of `bodies` or (apart from its base) the floor.
+
+        With `restore=False` the arm is left at `q`: a caller checking many poses in a row
+        puts it back once, at the end (`arm_state`, `restore`).
+        """
         p = self.p
-        saved = self.joints()
+        saved = self.arm_state() if restore else None
         try:
             self.set_arm(q)
             for body in bodies:
                 if p.getClosestPoints(self.arm, body, 0.0, physicsClientId=self.client):
                     return True
+                # A held cube hangs between the fingers: keep the hand that far from things.
+                if self.gripped is not None and any(
+                        p.getClosestPoints(self.arm, body, HELD_MARGIN, linkIndexA=link,
+                                           physicsClientId=self.client)
+                        for link in (HAND, *FINGERS)):
+                    return True
             if floor is not None:
-                for link in range(1, TIP):
-                    if p.getClosestPoints(self.arm, floor, 0.0, linkIndexA=link,
-                                          physicsClientId=self.client):
-                        return True
+                hits = p.getClosestPoints(self.arm, floor, 0.0, physicsClientId=self.client)
+                if any(1 <= hit[3] < TIP for hit in hits):
+                    return True
             return False
         finally:
-            self.set_arm(saved)
+            if saved is not None:
+                self.restore(saved)
 
     # --- grasping ------------------------------------------------------------------------
 

@@ -33,12 +33,15 @@ Point = tuple[float, float]
 
 @dataclass(frozen=True, slots=True)
 class Box:
-    """A static wall or piece of furniture: an axis-aligned box on the floor."""
+    """A static wall or piece of furniture: an axis-aligned box on the floor, or, with
+    `z` above 0, a board whose underside is at that height (a shelf the arm must reach
+    under; the base and its folded arm stay clear of anything lower than 1 m)."""
 
     name: str
     center: Point
     size: Point
     height: float = 0.4
+    z: float = 0.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -75,9 +78,11 @@ class Event:
 
     It fires at `tick`, or `delay` ticks after the `count`-th time the literal `when`
     (an atom such as `holding(green)`, optionally prefixed by `not`) becomes true.
-    `do` is `move` (an agent's hand carries `cube` to `to` and drops it there), `remove`
-    (the hand carries it out of the scene), `slip` (the robot's grip fails and the cube
-    falls) or `teleport` (`cube` jumps to `to`, or out of the scene without `to`: tests).
+    `do` is `move` (the agents' pusher pushes `cube` along the floor to `to`; a cube not
+    in the scene is first set down at `origin`, outside it), `remove` (the pusher pushes it
+    to `to`, or away from the robot, and it leaves the scene once past the bounds), `slip`
+    (the robot's grip fails and the cube falls) or `teleport` (`cube` jumps to `to`, or out
+    of the scene without `to`: tests).
     """
 
     name: str
@@ -88,6 +93,7 @@ class Event:
     when: str | None = None
     count: int = 1
     delay: int = 0
+    origin: Point | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -117,10 +123,10 @@ KEYS: dict[str, tuple[str, ...]] = {
     "": ("world", "robot", "wall", "cube", "region", "event"),
     "world": ("bounds", "tick_seconds", "speed", "cube_size"),
     "robot": ("start", "radius", "near"),
-    "wall": ("name", "center", "size", "height"),
+    "wall": ("name", "center", "size", "height", "z"),
     "cube": ("name", "at", "color"),
     "region": ("name", "min", "max", "aside", "color"),
-    "event": ("name", "when", "tick", "count", "delay", "do", "cube", "to"),
+    "event": ("name", "when", "tick", "count", "delay", "do", "cube", "to", "from"),
 }
 """The keys each table may have; anything else is a typo worth reporting."""
 _LITERAL = re.compile(r"^\s*(not\s+)?[A-Za-z_]\w*\s*(\(\s*(\w+\s*(,\s*\w+\s*)*)?\))?\s*$")
@@ -255,7 +261,7 @@ class _Reader:
         if min(size) <= 0:
             raise self.fail("a wall's 'size' must be positive", "size", f"got {list(size)}")
         return Box(self.name(t, "wall"), self.point(t.get("center"), "center"), size,
-                   self.scalar(t, "height", 0.4, least=0.01))
+                   self.scalar(t, "height", 0.4, least=0.01), self.scalar(t, "z", 0.0))
 
     def cube(self, t: dict[str, Any]) -> CubeSpec:
         at = self.point(t["at"], "at") if "at" in t else None
@@ -286,12 +292,13 @@ class _Reader:
                             str(when),
                             "write it as in the domain, e.g. holding(green) or not near(goal)")
         to = self.point(t["to"], "to") if "to" in t else None
+        origin = self.point(t["from"], "from") if "from" in t else None
         if do == "move" and to is None:
             raise self.fail(f"event '{shown}': a move needs 'to = [x, y]'", name)
         tick = int(self.scalar(t, "tick", 0, whole=True)) if "tick" in t else None
         count = int(self.scalar(t, "count", 1, whole=True, least=1))
         delay = int(self.scalar(t, "delay", 0, whole=True))
-        return Event(name, do, cube, to, tick, when, count, delay)
+        return Event(name, do, cube, to, tick, when, count, delay, origin)
 
     def check_names(self, scene: Scene) -> None:
         seen: set[str] = set()

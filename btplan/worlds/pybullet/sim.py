@@ -14,7 +14,7 @@ import math
 import os
 import sys
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import Any
 
 from btplan.errors import WorldError
@@ -26,6 +26,7 @@ HZ = 240            # physics steps per simulated second
 PARKED_Z = -10.0    # cubes not in the scene (yet, or any more) wait far below the floor
 CUBE_MASS = 0.1     # kilograms
 SOLVER_ITERATIONS = 15
+PROBE_Z = 0.5       # half the height of the base's collision probe (the folded arm is ~0.9 m)
 
 
 @contextlib.contextmanager
@@ -92,6 +93,10 @@ class Sim:
                                     physicsClientId=self.client)
         self.steps = 0
         self.physics_seconds = 0.0
+        self.outside_changes = 0
+        """Physics steps in which someone other than the robot moved a cube."""
+        self.controllers: list[Callable[[], None]] = []
+        """Called before every physics step: bodies driven by velocity (the agents' pusher)."""
         self._positions: dict[str, tuple[float, float, float]] = {}
         self.memo: dict[object, object] = {}
         """Values derived from the scene (who holds what), valid until it changes."""
@@ -99,7 +104,7 @@ class Sim:
             p.setAdditionalSearchPath(pybullet_data.getDataPath(), physicsClientId=self.client)
             self.floor = int(p.loadURDF("plane.urdf", physicsClientId=self.client))
             self.robot = Robot(p, self.client, self.floor)
-        self.walls = [self._box(w.center, w.size, w.height / 2, (0.55, 0.5, 0.45))
+        self.walls = [self._box(w.center, w.size, w.height / 2, (0.55, 0.5, 0.45), z=w.z)
                       for w in scene.walls]
         # Footprints (centre, half sizes) of the solid bodies: a cheap first test, so that
         # PyBullet is only asked about bodies that can touch the probe.
@@ -129,20 +134,22 @@ class Sim:
 
     def _box(self, center: Point, size: Point, half_height: float,
              color: tuple[float, float, float] | None, solid: bool = True,
-             mass: float = 0.0) -> int:
-        """A box resting on the floor; `solid=False` makes it visual only (regions)."""
+             mass: float = 0.0, z: float = 0.0) -> int:
+        """A box resting on the floor (or with its underside at `z`); `solid=False` makes
+        it visual only (regions)."""
         p = self.p
         half = [size[0] / 2, size[1] / 2, half_height]
         shape = p.createCollisionShape(p.GEOM_BOX, halfExtents=half, physicsClientId=self.client) \
             if solid else -1
         visual = -1 if color is None else p.createVisualShape(
             p.GEOM_BOX, halfExtents=half, rgbaColor=[*color, 1.0], physicsClientId=self.client)
-        return int(p.createMultiBody(mass, shape, visual, [center[0], center[1], half_height],
+        return int(p.createMultiBody(mass, shape, visual, [center[0], center[1], z + half_height],
                                      physicsClientId=self.client))
 
     def _cylinder(self, radius: float) -> int:
         p = self.p
-        shape = p.createCollisionShape(p.GEOM_CYLINDER, radius=radius, height=0.3,
+        # As tall as the robot with its arm folded: a shelf the arm would hit blocks the base.
+        shape = p.createCollisionShape(p.GEOM_CYLINDER, radius=radius, height=2 * PROBE_Z,
                                        physicsClientId=self.client)
         return int(p.createMultiBody(0.0, shape, -1, [0.0, 0.0, PARKED_Z], physicsClientId=self.client))
 
@@ -171,6 +178,8 @@ class Sim:
 
     def step(self) -> None:
         """One physics step of 1/240 s (its wall time is kept for bench/sim.py)."""
+        for control in self.controllers:
+            control()
         began = time.perf_counter()
         self.p.stepSimulation(physicsClientId=self.client)
         self.physics_seconds += time.perf_counter() - began
@@ -244,11 +253,11 @@ class Sim:
         if not self.in_bounds(x, y, self.scene.robot_radius):
             return False
         bodies = self.walls + [self.cubes[c] for c in cubes]
-        return not self._hits(self.probe, (x, y, 0.15), bodies, margin)
+        return not self._hits(self.probe, (x, y, PROBE_Z), bodies, margin)
 
     def base_hits(self, x: float, y: float, cubes: list[str]) -> bool:
         """True when the robot's disc at (x, y) touches one of `cubes` (walls not checked)."""
-        return self._hits(self.probe, (x, y, 0.15), [self.cubes[c] for c in cubes], 0.0)
+        return self._hits(self.probe, (x, y, PROBE_Z), [self.cubes[c] for c in cubes], 0.0)
 
     def cube_fits(self, x: float, y: float, cubes: list[str], margin: float = 0.05) -> bool:
         """True when a cube put down at (x, y) would touch no wall and none of `cubes`."""

@@ -165,7 +165,16 @@ class PyBulletWorld:
             "arm_planning_seconds": round(self.timings.arm_planning, 3),
             "arm_ompl_solves": self.timings.ompl_solves,
             "arm_ompl_seconds": round(self.timings.ompl, 3),
+            "arm_ompl_followed": self.timings.ompl_followed,
         }
+
+    continuous = True
+    """Facts change while an action runs (read by the acting loop's check for loops)."""
+
+    @property
+    def outside_changes(self) -> int:
+        """Physics steps in which the scene's agents pushed a cube (read by the loop)."""
+        return self.state.sim.outside_changes
 
     def scene_agents(self) -> list[SceneAgents]:
         """The scene's scripted external events, as one agent acting before each tick."""

@@ -65,7 +65,7 @@ def test_the_youbot_sequence_of_the_paper() -> None:
         assert "MoveTo(yellow)" in names(world.halted)
         log = [d.description for d in world.agents.log]
         assert list(dict.fromkeys(text.split(":")[0] for text in log)) == [
-            "agent puts red in the doorway", "agent puts yellow in the doorway",
+            "agent puts red in the way", "agent puts yellow in the way",
             "agent takes yellow away"]
 
         conditions = [re.sub(r"pose\d+", "pose", e.condition) for e in loop.expansions]

@@ -1,0 +1,124 @@
+"""The scene's agents act through the pusher: cubes travel over the floor by contact.
+
+No skill runs here: the test steps the physics itself, one tick's worth of substeps
+after every call of the agents, as the skills would.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from sim_scenes import OPEN_ROOM, write_scene, youbot_task
+
+from btplan.worlds.pybullet import PyBulletWorld, open_world
+from btplan.worlds.pybullet.scene import load_scene
+
+TASK = youbot_task()
+WALLED = OPEN_ROOM + """
+[[wall]]
+name = "post"
+center = [3.5, 1.0]
+size = [0.2, 0.6]
+"""
+
+
+def advance(world: PyBulletWorld, ticks: int, first: int = 1) -> list[str]:
+    """Tick the agents and step the physics; returns what they reported."""
+    said: list[str] = []
+    sim = world.state.sim
+    for tick in range(first, first + ticks):
+        said += [d.description for a in world.scene_agents() for d in a.act(world, tick)]
+        for _ in range(24):
+            sim.step()
+    return said
+
+
+def at(world: PyBulletWorld, cube: str) -> tuple[float, float]:
+    x, y, _ = world.state.sim.cube_position(cube)
+    return (x, y)
+
+
+def test_a_move_pushes_the_cube_by_contact_to_its_target(tmp_path: Path) -> None:
+    events = """
+[[event]]
+name = "push green"
+tick = 1
+do = "move"
+cube = "green"
+to = [3.0, -1.0]
+"""
+    world = open_world(TASK, write_scene(tmp_path, events=events), seed=0)
+    try:
+        changes = world.outside_changes
+        said = advance(world, 80)
+        assert said[0] == "push green: the pusher sets off to push green to [3.0, -1.0]"
+        assert said[1].startswith("push green: green pushed to")
+        assert math.dist(at(world, "green"), (3.0, -1.0)) < 0.02
+        assert world.state.resting("green")
+        assert world.outside_changes > changes + 20   # counted, for the acting loop
+    finally:
+        world.close()
+
+
+def test_a_cube_is_brought_in_from_outside_and_removed_out_of_the_scene(
+        tmp_path: Path) -> None:
+    events = """
+[[event]]
+name = "bring red"
+tick = 1
+do = "move"
+cube = "red"
+from = [4.5, -2.4]
+to = [4.5, 0.0]
+
+[[event]]
+name = "take red"
+tick = 40
+do = "remove"
+cube = "red"
+to = [4.5, 2.5]
+"""
+    world = open_world(TASK, write_scene(tmp_path, events=events), seed=0)
+    try:
+        assert not world.state.present("red")
+        said = advance(world, 38)
+        assert world.state.present("red") and math.dist(at(world, "red"), (4.5, 0.0)) < 0.02
+        said += advance(world, 60, 39)
+        assert "take red: red pushed out of the scene" in said
+        assert not world.state.present("red")
+    finally:
+        world.close()
+
+
+def test_a_push_into_a_wall_is_given_up_where_the_cube_stands(tmp_path: Path) -> None:
+    events = """
+[[event]]
+name = "push green through the post"
+tick = 1
+do = "move"
+cube = "green"
+to = [5.0, 1.0]
+"""
+    world = open_world(TASK, write_scene(tmp_path, WALLED, events), seed=0)
+    try:
+        said = advance(world, 80)
+        assert any(s.startswith("push green through the post: green stuck at") for s in said)
+        x, y = at(world, "green")
+        assert 2.5 < x < 3.4 and abs(y - 1.0) < 0.1   # stopped against the post
+    finally:
+        world.close()
+
+
+def test_from_is_read_from_the_scene_file(tmp_path: Path) -> None:
+    events = """
+[[event]]
+name = "bring red"
+tick = 1
+do = "move"
+cube = "red"
+from = [4.5, -2.4]
+to = [4.5, 0.0]
+"""
+    (event,) = load_scene(write_scene(tmp_path, events=events)).events
+    assert event.origin == (4.5, -2.4) and event.to == (4.5, 0.0)
