@@ -68,7 +68,13 @@ def test_the_youbot_sequence_of_the_paper() -> None:
             "agent puts red in the doorway", "agent puts yellow in the doorway",
             "agent takes yellow away"]
 
-        conditions = [re.sub(r"pose\d+", "pose", e.condition) for e in loop.expansions]
+        expansions = [(re.sub(r"pose\d+", "pose", e.condition), e.achievers)
+                      for e in loop.expansions]
+        # A moved subtree leaves a copy of its condition behind (before MoveTo); when the
+        # copy fails in the same tick it is expanded with the same achievers. That is the
+        # same step, not a new one: count it once.
+        steps = [x for i, x in enumerate(expansions) if i == 0 or x != expansions[i - 1]]
+        conditions = [c for c, _ in steps]
         # Expansions only where the paper has them: the task (a), the blocked path to the
         # goal and what clearing it needs (b), red on the way back to green (c, d), and
         # yellow on the goal path, which grows the blocked path's subtree (e).
@@ -79,8 +85,8 @@ def test_the_youbot_sequence_of_the_paper() -> None:
             green_path, "holding(red)", "near(red)", "near(pose)",
             goal_path, "holding(yellow)", "hand_empty()", "near(yellow)"]
         assert goal_path.startswith("not blocks(_, ") and green_path.startswith("not blocks(_, ")
-        cleared = [a.split("(")[1].split(",")[0] for e in loop.expansions for a in e.achievers
-                   if a.startswith("Place") and e.condition.startswith("not blocks")]
+        cleared = [a.split("(")[1].split(",")[0] for c, achievers in steps for a in achievers
+                   if a.startswith("Place") and c.startswith("not blocks")]
         assert cleared == ["blue", "red", "yellow"]
         assert sizes == sorted(sizes)  # the tree only grows
 
