@@ -71,9 +71,10 @@ def test_the_youbot_sequence_of_the_paper() -> None:
         expansions = [(re.sub(r"pose\d+", "pose", e.condition), e.achievers)
                       for e in loop.expansions]
         # A moved subtree leaves a copy of its condition behind (before MoveTo); when the
-        # copy fails in the same tick it is expanded with the same achievers. That is the
-        # same step, not a new one: count it once.
-        steps = [x for i, x in enumerate(expansions) if i == 0 or x != expansions[i - 1]]
+        # copy fails right after, it is expanded too. That is the same step of the paper,
+        # not a new one: count a condition expanded twice in a row once.
+        steps = [x for i, x in enumerate(expansions)
+                 if i == 0 or x[0] != expansions[i - 1][0]]
         conditions = [c for c, _ in steps]
         # Expansions only where the paper has them: the task (a), the blocked path to the
         # goal and what clearing it needs (b), red on the way back to green (c, d), and
