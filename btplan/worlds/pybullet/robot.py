@@ -225,41 +225,13 @@ class Robot:
         """Create the grasp constraint, but only when both fingers touch the cube."""
         if self.grip is not None or not all(self.touching(body, CONTACT)):
             return self.grip is not None and self.gripped == body
-        p = self.p
-        hand_pos, hand_orn = p.getLinkState(self.arm, HAND, physicsClientId=self.client)[:2]
-        cube_pos, cube_orn = p.getBasePositionAndOrientation(body, physicsClientId=self.client)
-        inv_pos, inv_orn = p.invertTransform(hand_pos, hand_orn)
-        rel_pos, rel_orn = p.multiplyTransforms(inv_pos, inv_orn, cube_pos, cube_orn)
-        self.grip = int(p.createConstraint(self.arm, HAND, body, -1, p.JOINT_FIXED, [0, 0, 0],
-                                           rel_pos, [0, 0, 0], rel_orn,
-                                           physicsClientId=self.client))
-        p.changeConstraint(self.grip, maxForce=300.0, erp=0.8, physicsClientId=self.client)
+        self.grip = grasp(self.p, self.client, self.arm, body)
         self.gripped = body
-        # Hold the fingers where they met the cube, and let the constraint alone carry
-        # it: the base is moved kinematically, and contacts fought against the
-        # constraint would let the fingers work their way into the cube or pry it open.
-        self._collide(body, False)
-        p = self.p
-        # Exactly where they are: pressed into the cube, they would pop it away when the
-        # contacts are switched back on at release.
-        where = [s[0] for s in p.getJointStates(self.arm, list(FINGERS),
-                                                physicsClientId=self.client)]
-        p.setJointMotorControlArray(self.arm, list(FINGERS), p.POSITION_CONTROL,
-                                    targetPositions=where, forces=[FINGER_FORCE] * 2,
-                                    physicsClientId=self.client)
         return True
-
-    def _collide(self, body: int, enabled: bool) -> None:
-        for link in (HAND, *FINGERS):
-            self.p.setCollisionFilterPair(self.arm, body, link, -1, int(enabled),
-                                          physicsClientId=self.client)
 
     def detach(self) -> None:
         """Remove the grasp constraint (the fingers opened, or the cube was taken away)."""
-        if self.grip is not None:
-            self.p.removeConstraint(self.grip, physicsClientId=self.client)
-        if self.gripped is not None:
-            self._collide(self.gripped, True)
+        release(self.p, self.client, self.arm, self.grip, self.gripped)
         self.grip = self.gripped = None
 
     def slip(self) -> None:
@@ -274,3 +246,39 @@ class Robot:
     def open(self) -> None:
         self.detach()
         self.fingers(OPEN)
+
+
+def grasp(p: Any, client: int, arm: int, body: int) -> int:
+    """Fix `body` to the hand where it is now, and hold the fingers where they met it.
+
+    The constraint alone carries the body: the fingers' contacts with it are switched
+    off, since contacts fought against the constraint would let the fingers work their way
+    into the body or pry it open. The fingers stay exactly where they are: pressed in,
+    they would pop the body away when the contacts come back at release.
+    """
+    hand_pos, hand_orn = p.getLinkState(arm, HAND, physicsClientId=client)[:2]
+    pos, orn = p.getBasePositionAndOrientation(body, physicsClientId=client)
+    inv_pos, inv_orn = p.invertTransform(hand_pos, hand_orn)
+    rel_pos, rel_orn = p.multiplyTransforms(inv_pos, inv_orn, pos, orn)
+    grip = int(p.createConstraint(arm, HAND, body, -1, p.JOINT_FIXED, [0, 0, 0], rel_pos,
+                                  [0, 0, 0], rel_orn, physicsClientId=client))
+    p.changeConstraint(grip, maxForce=300.0, erp=0.8, physicsClientId=client)
+    _finger_contacts(p, client, arm, body, False)
+    where = [s[0] for s in p.getJointStates(arm, list(FINGERS), physicsClientId=client)]
+    p.setJointMotorControlArray(arm, list(FINGERS), p.POSITION_CONTROL,
+                                targetPositions=where, forces=[FINGER_FORCE] * 2,
+                                physicsClientId=client)
+    return grip
+
+
+def release(p: Any, client: int, arm: int, grip: int | None, body: int | None) -> None:
+    """Undo `grasp`: remove the constraint and give the fingers their contacts back."""
+    if grip is not None:
+        p.removeConstraint(grip, physicsClientId=client)
+    if body is not None:
+        _finger_contacts(p, client, arm, body, True)
+
+
+def _finger_contacts(p: Any, client: int, arm: int, body: int, enabled: bool) -> None:
+    for link in (HAND, *FINGERS):
+        p.setCollisionFilterPair(arm, body, link, -1, int(enabled), physicsClientId=client)

@@ -20,12 +20,13 @@ from btplan.worlds.pybullet.robot import (
     FINGER_FORCE,
     FINGERS,
     FORCES,
-    HAND,
     LOWER,
     OPEN,
     TIP,
     TOUCH,
     UPPER,
+    grasp,
+    release,
 )
 
 Q = tuple[float, ...]
@@ -169,36 +170,12 @@ class Panda:
             return self.gripped == body
         if not self.touching(body, CONTACT):
             return False
-        p = self.p
-        hand_pos, hand_orn = p.getLinkState(self.body, HAND, physicsClientId=self.client)[:2]
-        pos, orn = p.getBasePositionAndOrientation(body, physicsClientId=self.client)
-        inv_pos, inv_orn = p.invertTransform(hand_pos, hand_orn)
-        rel_pos, rel_orn = p.multiplyTransforms(inv_pos, inv_orn, pos, orn)
-        self.grip = int(p.createConstraint(self.body, HAND, body, -1, p.JOINT_FIXED, [0, 0, 0],
-                                           rel_pos, [0, 0, 0], rel_orn,
-                                           physicsClientId=self.client))
-        p.changeConstraint(self.grip, maxForce=300.0, erp=0.8, physicsClientId=self.client)
+        self.grip = grasp(self.p, self.client, self.body, body)
         self.gripped, self.since = body, step
-        # The constraint carries the part; fingers pressed against it as well would let
-        # the solver fight the constraint. They stay exactly where they met it.
-        self._collide(body, False)
-        where = [s[0] for s in p.getJointStates(self.body, list(FINGERS),
-                                                physicsClientId=self.client)]
-        p.setJointMotorControlArray(self.body, list(FINGERS), p.POSITION_CONTROL,
-                                    targetPositions=where, forces=[FINGER_FORCE] * 2,
-                                    physicsClientId=self.client)
         return True
 
-    def _collide(self, body: int, enabled: bool) -> None:
-        for link in (HAND, *FINGERS):
-            self.p.setCollisionFilterPair(self.body, body, link, -1, int(enabled),
-                                          physicsClientId=self.client)
-
     def detach(self) -> None:
-        if self.grip is not None:
-            self.p.removeConstraint(self.grip, physicsClientId=self.client)
-        if self.gripped is not None:
-            self._collide(self.gripped, True)
+        release(self.p, self.client, self.body, self.grip, self.gripped)
         self.grip = self.gripped = None
 
     def open(self) -> None:
