@@ -168,8 +168,13 @@ class RunFiles:
             self.trace.__exit__(kind, error, tb)
 
     def add(self, record: TickRecord) -> None:
+        """The plan first, then the trace: an action the trace shows finished is in the
+        plan file, even when the run is killed between the two writes."""
+        self._write_plan()
         if self.trace is not None:
             self.trace.write_line(record.to_json())
+
+    def _write_plan(self) -> None:
         executed = list(self.world.executed)
         if self.plan_out is None or len(executed) == self._done:
             return

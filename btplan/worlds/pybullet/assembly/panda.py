@@ -142,13 +142,15 @@ class Panda:
                 return solution
         return None
 
-    def touches(self, q: Sequence[float], bodies: Sequence[int], table: int) -> bool:
-        """Whether the arm at `q` touches one of `bodies`, or the table with more than its foot."""
+    def touches(self, q: Sequence[float], bodies: Sequence[int], table: int,
+                clearance: float = 0.0) -> bool:
+        """Whether the arm at `q` comes within `clearance` of one of `bodies`, or touches
+        the table with more than its foot."""
         p = self.p
         saved = self.joints()
         try:
             self.set_arm(q)
-            if any(p.getClosestPoints(self.body, body, 0.0, physicsClientId=self.client)
+            if any(p.getClosestPoints(self.body, body, clearance, physicsClientId=self.client)
                    for body in bodies):
                 return True
             return any(p.getClosestPoints(self.body, table, 0.0, linkIndexA=link,
