@@ -279,14 +279,20 @@ class Sim:
         for probe in (self.probe, self.cube_probe):  # collision probes would show as grey shapes
             p.resetBasePositionAndOrientation(probe, [0, 0, PARKED_Z], [0, 0, 0, 1],
                                               physicsClientId=self.client)
-        view = p.computeViewMatrix([x - 0.95, y - 1.6, 1.45], [x + 0.3, y, 0.25], [0, 0, 1],
-                                   physicsClientId=self.client)
-        proj = p.computeProjectionMatrixFOV(55, width / height, 0.1, 30.0,
-                                            physicsClientId=self.client)
-        _, _, rgba, _, _ = p.getCameraImage(width, height, view, proj,
-                                            renderer=p.ER_TINY_RENDERER,
-                                            physicsClientId=self.client)
-        # A numpy array when pybullet was built with numpy, a flat tuple of ints otherwise.
-        pixels = rgba.astype("uint8").tobytes() if hasattr(rgba, "astype") \
-            else bytes(bytearray(int(v) for v in rgba))
-        return width, height, pixels
+        return render(p, self.client, ([x - 0.95, y - 1.6, 1.45], [x + 0.3, y, 0.25]),
+                      (55, 30.0), width, height)
+
+
+def render(p: Any, client: int, camera: tuple[list[float], list[float]],
+           lens: tuple[float, float], width: int, height: int) -> tuple[int, int, bytes]:
+    """An RGBA picture with the software renderer (headless): `camera` is (eye, target),
+    `lens` is (vertical field of view in degrees, far plane in metres)."""
+    view = p.computeViewMatrix(camera[0], camera[1], [0, 0, 1], physicsClientId=client)
+    proj = p.computeProjectionMatrixFOV(lens[0], width / height, 0.1, lens[1],
+                                        physicsClientId=client)
+    _, _, rgba, _, _ = p.getCameraImage(width, height, view, proj,
+                                        renderer=p.ER_TINY_RENDERER, physicsClientId=client)
+    # A numpy array when pybullet was built with numpy, a flat tuple of ints otherwise.
+    pixels = rgba.astype("uint8").tobytes() if hasattr(rgba, "astype") \
+        else bytes(bytearray(int(v) for v in rgba))
+    return width, height, pixels

@@ -20,7 +20,7 @@ from btplan.errors import WorldError
 from btplan.worlds.pybullet.assembly.geometry import Quat, Vec
 from btplan.worlds.pybullet.assembly.panda import Panda
 from btplan.worlds.pybullet.assembly.scene import AssemblyScene
-from btplan.worlds.pybullet.sim import HZ, SOLVER_ITERATIONS, quiet_stdout
+from btplan.worlds.pybullet.sim import HZ, SOLVER_ITERATIONS, quiet_stdout, render
 
 PART_MASS = 0.08     # kilograms
 
@@ -136,16 +136,8 @@ class AssemblyPhysics:
     def snapshot(self, width: int = 640, height: int = 400) -> tuple[int, int, bytes]:
         """An RGB picture of the table from the front, both arms in view (software renderer)."""
         p = self.p
-        view = p.computeViewMatrix([0.0, -1.05, 0.72], [0.0, 0.05, 0.24], [0, 0, 1],
-                                   physicsClientId=self.client)
-        proj = p.computeProjectionMatrixFOV(62, width / height, 0.1, 10.0,
-                                            physicsClientId=self.client)
-        _, _, rgba, _, _ = p.getCameraImage(width, height, view, proj,
-                                            renderer=p.ER_TINY_RENDERER,
-                                            physicsClientId=self.client)
-        pixels = rgba.astype("uint8").tobytes() if hasattr(rgba, "astype") \
-            else bytes(bytearray(int(v) for v in rgba))
-        return width, height, pixels
+        return render(p, self.client, ([0.0, -1.05, 0.72], [0.0, 0.05, 0.24]), (62, 10.0),
+                      width, height)
 
     def close(self) -> None:
         with contextlib.suppress(Exception):
