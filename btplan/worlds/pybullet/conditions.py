@@ -6,11 +6,16 @@ seen on the next tick. `blocks(c, t)` re-plans a stale trajectory before checkin
 
 from __future__ import annotations
 
+import time
+from collections.abc import Callable
+from typing import TypeVar
+
 from btplan.errors import WorldError
 from btplan.model import Atom
 from btplan.worlds.pybullet.routes import Routes
 
 Key = tuple[str, tuple[str, ...]]
+T = TypeVar("T")
 
 
 class Conditions:
@@ -19,8 +24,14 @@ class Conditions:
     def __init__(self, routes: Routes, assumed: frozenset[Atom]) -> None:
         self.routes, self.state = routes, routes.state
         self.assumed = assumed
+        self.seconds = 0.0
+        """Wall time spent measuring conditions and facts, without the base's OMPL solves
+        they caused (bench/sim.py reports those apart)."""
 
     def check(self, key: Key) -> bool:
+        return self._timed(lambda: self._check(key))
+
+    def _check(self, key: Key) -> bool:
         state = self.state
         name, args = key
         if name == "near":
@@ -41,14 +52,26 @@ class Conditions:
 
     def facts(self) -> frozenset[Atom]:
         """Every condition of the domain's vocabulary that holds now, as atoms."""
+        return self._timed(self._facts)
+
+    def _timed(self, measure: Callable[[], T]) -> T:
+        """Run `measure`, adding its wall time, less the base's OMPL solves, to `seconds`."""
+        solves, began = len(self.routes.plan_seconds), time.perf_counter()
+        try:
+            return measure()
+        finally:
+            self.seconds += time.perf_counter() - began - sum(self.routes.plan_seconds[solves:])
+
+    def _facts(self) -> frozenset[Atom]:
         state = self.state
         found: set[Atom] = set(self.assumed)
         locations = [*state.cube_names, *(r.name for r in state.scene.regions), *sorted(state.poses)]
         found.update(Atom("near", (n,)) for n in locations if state.is_near(n))
         held = state.in_hand()
         found.add(Atom("hand_empty", ()) if held is None else Atom("holding", (held,)))
-        found.update(Atom("on", (c, p)) for c in state.cube_names for p in locations
-                     if state.on(c, p))
+        places = [*(r.name for r in state.scene.regions), *sorted(state.poses)]  # where `on` can hold
+        found.update(Atom("on", (c, p)) for c in state.cube_names if state.resting(c)
+                     for p in places if state.on(c, p))
         for name in sorted(state.trajectories):
             traj = state.trajectories[name]
             found.add(Atom("route", (traj.target, name)))

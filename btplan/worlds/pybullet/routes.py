@@ -7,17 +7,21 @@ the conditions, the skills and refinement use it.
 from __future__ import annotations
 
 import itertools
+import math
 import time
 
 from btplan.worlds.pybullet import motion, samplers
 from btplan.worlds.pybullet.motion import Pose2
-from btplan.worlds.pybullet.paths import CHECK_FROM, DRIVE_FROM, Trajectory
+from btplan.worlds.pybullet.geometry import distance
+from btplan.worlds.pybullet.paths import CHECK_FROM, DRIVE_FROM, STALE_GOAL, Trajectory
 from btplan.worlds.pybullet.scene import Point
 from btplan.worlds.pybullet.state import SceneState
 
 STEP = 0.05          # metres between waypoints of a path
 PLAN_BUDGET = 0.3    # seconds OMPL may take for a path that avoids walls only (solves take ~15 ms)
 DETOUR_BUDGET = 0.1  # seconds for a path that also avoids the movable cubes
+JOIN = CHECK_FROM    # metres a stale path may be joined over, from the robot or to the goal
+JOIN_BACK = 2 * round(JOIN / STEP)  # waypoints back from the end where the goal join may start
 
 
 class Routes:
@@ -30,6 +34,7 @@ class Routes:
         self._no_detour: set[tuple[object, ...]] = set()
         self._no_path: set[tuple[object, ...]] = set()
         self.refreshed = 0  # poses sampled again because they went stale
+        self.joined = 0  # stale paths kept, joined to the robot and to the goal instead
         self.last_blockers: dict[str, frozenset[str]] = {}
         """The cubes last measured on each path: the facts report them for a path not
         measured now (planned from elsewhere), so that they do not flicker as the robot moves."""
@@ -107,6 +112,11 @@ class Routes:
             samplers.approach_pose(state, traj.target, avoid_cubes=False)
         if not traj.stale(state.base, goal, state.layout(), slack) or goal is None:
             return
+        joined = self._join(traj, goal)
+        if joined is not None:
+            traj.path, traj.goal = joined, goal
+            self.joined += 1
+            return
         path = self._plan(traj.target, goal)
         traj.plans += 1
         if not path and traj.path and slack > DRIVE_FROM:
@@ -115,6 +125,41 @@ class Routes:
             return
         traj.path, traj.goal = path, goal
         traj.layout = state.layout()
+
+    def _join(self, traj: Trajectory, goal: Pose2) -> tuple[Pose2, ...] | None:
+        """The stale path, joined by straight lines from the robot and to the new goal.
+
+        A path the robot only drove off, or whose target moved a little, is still a way
+        there: the robot steps onto its nearest waypoint and leaves it where the goal is
+        in a straight line. Both joins must be free of walls and cubes, and the robot must
+        not have moved a cube since the path was planned; otherwise OMPL plans again.
+        """
+        state, path = self.state, traj.path
+        if not path or traj.goal is None or traj.layout != state.layout() \
+                or distance(traj.goal, goal) > JOIN:
+            return None
+        robot = state.base
+        first = min(range(len(path)), key=lambda i: (distance(path[i], robot), -i))
+        if distance(path[first], robot) > JOIN:
+            return None
+        cubes = state.floor_cubes(traj.target, state.held)
+        if not self._line_free(robot, path[first], cubes):
+            return None
+        head = motion.densify([robot[:2], path[first][:2]], robot, path[first], STEP)[:-1]
+        if distance(traj.goal, goal) <= STALE_GOAL:
+            return head + path[first:]
+        for last in range(len(path) - 2, max(first, len(path) - 2 - JOIN_BACK) - 1, -1):
+            if self._line_free(path[last], goal, cubes):
+                tail = motion.densify([path[last][:2], goal[:2]], path[last], goal, STEP)
+                return head + path[first:last] + tail
+        return None
+
+    def _line_free(self, a: Pose2, b: Pose2, cubes: list[str]) -> bool:
+        """The robot's disc fits everywhere on the segment from `a` to `b` (every half step)."""
+        n = max(1, math.ceil(distance(a, b) / (STEP / 2)))
+        sim = self.state.sim
+        return all(sim.base_free(a[0] + (b[0] - a[0]) * k / n, a[1] + (b[1] - a[1]) * k / n, cubes)
+                   for k in range(n + 1))
 
     def _plan(self, target: str, goal: Pose2) -> tuple[Pose2, ...]:
         state = self.state

@@ -52,13 +52,6 @@ def quiet_stdout(fds: tuple[int, ...] = (1,)) -> Iterator[None]:
         os.close(null)
 
 
-def _box_distance(x: float, y: float, box: tuple[float, float, float, float]) -> float:
-    """Distance from a point to an axis-aligned rectangle (0 inside)."""
-    cx, cy, hx, hy = box
-    dx, dy = max(abs(x - cx) - hx, 0.0), max(abs(y - cy) - hy, 0.0)
-    return math.hypot(dx, dy)
-
-
 def _flush_c_stdio() -> None:
     import ctypes
 
@@ -215,8 +208,12 @@ class Sim:
         return float(self.p.getEulerFromQuaternion(orn)[2])
 
     def cube_speed(self, name: str) -> float:
-        linear, _ = self.p.getBaseVelocity(self.cubes[name], physicsClientId=self.client)
-        return math.sqrt(sum(v * v for v in linear))
+        key = ("speed", name)
+        known = self.memo.get(key)
+        if not isinstance(known, float):
+            linear, _ = self.p.getBaseVelocity(self.cubes[name], physicsClientId=self.client)
+            known = self.memo[key] = math.sqrt(sum(v * v for v in linear))
+        return known
 
     def gripper_point(self) -> Point:
         x, y, _ = self.robot.tip()
@@ -228,7 +225,16 @@ class Sim:
               margin: float) -> bool:
         reach = (self.scene.robot_radius if probe == self.probe else self.scene.cube_size) \
             + margin + 0.02
-        near = [b for b in bodies if _box_distance(at[0], at[1], self.footprint(b)) <= reach]
+        x, y = at[0], at[1]
+        near = []
+        # The distance from (x, y) to each footprint, compared without a square root: this
+        # runs for every state OMPL checks, and most states are far from every body.
+        for body in bodies:
+            cx, cy, hx, hy = self.extent.get(body) or self.footprint(body)
+            dx, dy = abs(x - cx) - hx, abs(y - cy) - hy
+            if dx > reach or dy > reach or (dx > 0 < dy and dx * dx + dy * dy > reach * reach):
+                continue
+            near.append(body)
         if not near:
             return False
         p = self.p

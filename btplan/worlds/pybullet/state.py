@@ -11,7 +11,7 @@ import math
 
 from btplan.errors import WorldError
 from btplan.model import Task
-from btplan.worlds.pybullet.geometry import clearance, distance
+from btplan.worlds.pybullet.geometry import distance
 from btplan.worlds.pybullet.motion import Pose2
 from btplan.worlds.pybullet.paths import Trajectory
 from btplan.worlds.pybullet.scene import Point, Scene
@@ -20,6 +20,8 @@ from btplan.worlds.pybullet.sim import HZ, Sim
 REST_HEIGHT = 0.01   # metres above its resting height a cube on the floor may be
 REST_SPEED = 0.25    # m/s: slower than this, a cube on the floor has landed (it may still settle)
 LIFTED = 0.004       # metres above its resting height a held cube must be
+QUERIES_KEPT = 5000  # collision query answers kept before they are all forgotten
+KEY_DIGITS = 4       # cube positions in the keys of those answers: to 0.1 mm
 
 
 class SceneState:
@@ -41,6 +43,9 @@ class SceneState:
         not `near` until the robot drives up to them again (or they move)."""
         self.trajectories: dict[str, Trajectory] = {}
         self.poses: dict[str, Point] = {}
+        self.queries: dict[object, object] = {}
+        """Answers of collision queries, keyed by the exact positions they depend on: a
+        cube at rest and a path not planned again give the same answer every tick."""
         self.check_objects()
         self.sim = Sim(scene, gui)  # after the checks: a refused scene leaves no connection open
 
@@ -137,10 +142,10 @@ class SceneState:
 
     def on(self, cube: str, place: str) -> bool:
         """`cube` came to rest inside region `place`, or at pose `place`."""
-        if not self.resting(cube):
+        region = self.scene.region(place)
+        if (region is None and place not in self.poses) or not self.resting(cube):
             return False
         at = self.location(cube)
-        region = self.scene.region(place)
         if region is not None:
             return region.contains(*at)
         if place in self.poses:
@@ -179,12 +184,51 @@ class SceneState:
     def on_path(self, cube: str, path: tuple[Pose2, ...], start: int) -> bool:
         if not path or not self.present(cube):
             return False
-        at = self.location(cube)
+        position = self.sim.cube_position(cube)
+        key = ("on_path", id(path), start, cube, self.rounded(cube))
+        known = self.queries.get(key)
+        if isinstance(known, tuple) and known[0] is path:  # the same path, not a reused id
+            return bool(known[1])
+        found = self._on_path(position[0], position[1], cube, path, start)
+        self.remember(key, (path, found))
+        return found
+
+    def _on_path(self, x: float, y: float, cube: str, path: tuple[Pose2, ...], start: int
+                 ) -> bool:
+        """The collision check of `on_path`, after two cheap tests that the cube is far:
+        outside the whole path's bounding box, then farther than `reach` from every waypoint."""
         reach = self.scene.robot_radius + self.scene.cube_size
-        rest = path[start:]
-        if clearance(at, rest) > reach:
+        x0, x1, y0, y1 = self._box(path)
+        if not (x0 - reach <= x <= x1 + reach and y0 - reach <= y <= y1 + reach):
+            return False
+        rest, square = path[start:], reach * reach
+        if all((q[0] - x) ** 2 + (q[1] - y) ** 2 > square for q in rest):
             return False
         return any(self.sim.base_hits(q[0], q[1], [cube]) for q in rest[::2] + rest[-1:])
+
+    def _box(self, path: tuple[Pose2, ...]) -> tuple[float, float, float, float]:
+        key = ("box", id(path))
+        known = self.queries.get(key)
+        if isinstance(known, tuple) and known[0] is path:
+            return known[1]  # type: ignore[no-any-return]
+        xs, ys = [q[0] for q in path], [q[1] for q in path]
+        box = (min(xs), max(xs), min(ys), max(ys))
+        self.remember(key, (path, box))
+        return box
+
+    def rounded(self, cube: str) -> tuple[float, ...]:
+        """Where a cube is, to a tenth of a millimetre: the key of cached query answers.
+
+        A cube at rest still creeps by about a micrometre per tick; an exact key would
+        never be asked twice.
+        """
+        return tuple(round(v, KEY_DIGITS) for v in self.sim.cube_position(cube))
+
+    def remember(self, key: object, answer: object) -> None:
+        """Keep a query's answer; forget them all now and then, so the memory stays small."""
+        if len(self.queries) > QUERIES_KEPT:
+            self.queries.clear()
+        self.queries[key] = answer
 
     def path_blockers(self, traj: Trajectory, start: int = 0) -> set[str]:
         """Cubes on the floor on the rest of the path, and obstacles still in hand (or
