@@ -52,7 +52,23 @@ class Conditions:
 
     def facts(self) -> frozenset[Atom]:
         """Every condition of the domain's vocabulary that holds now, as atoms."""
-        return self._timed(self._facts)
+        return self._timed(self._known_facts)
+
+    def _known_facts(self) -> frozenset[Atom]:
+        """The facts, measured once between two changes: the loop asks at the end of one
+        tick and at the start of the next, and the scene's agents mostly did nothing between."""
+        memo = self.state.sim.memo  # forgotten at every physics step and every teleport
+        known = memo.get("facts")
+        if isinstance(known, tuple) and known[0] == self._mark():
+            return known[1]  # type: ignore[no-any-return]
+        found = self._facts()
+        memo["facts"] = (self._mark(), found)
+        return found
+
+    def _mark(self) -> tuple[object, ...]:
+        """What the facts depend on besides the simulation: the world's own bookkeeping."""
+        state = self.state
+        return (state.bookkeeping(), tuple(sorted(self.routes.last_blockers.items())))
 
     def _timed(self, measure: Callable[[], T]) -> T:
         """Run `measure`, adding its wall time, less the base's OMPL solves, to `seconds`."""

@@ -190,11 +190,7 @@ class Routes:
 
     def _solve(self, start: Pose2, goal: Pose2, cubes: list[str], budget: float
                ) -> tuple[Pose2, ...] | None:
-        sim = self.state.sim
-
-        def valid(x: float, y: float) -> bool:
-            return sim.base_free(x, y, cubes)
-
+        valid = self.state.sim.base_checker(cubes)
         if not (valid(start[0], start[1]) and valid(goal[0], goal[1])):
             return None  # OMPL would spend its whole budget before saying so
         began = time.perf_counter()

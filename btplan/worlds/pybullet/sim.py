@@ -52,6 +52,22 @@ def quiet_stdout(fds: tuple[int, ...] = (1,)) -> Iterator[None]:
         os.close(null)
 
 
+def _near(x: float, y: float, boxes: list[tuple[int, tuple[float, float, float, float]]],
+          reach: float) -> list[int]:
+    """The bodies whose footprint (centre, half sizes) is within `reach` of (x, y).
+
+    Compared without a square root: this runs for every state OMPL checks, and most
+    states are far from every body.
+    """
+    near = []
+    for body, (cx, cy, hx, hy) in boxes:
+        dx, dy = abs(x - cx) - hx, abs(y - cy) - hy
+        if dx > reach or dy > reach or (dx > 0 < dy and dx * dx + dy * dy > reach * reach):
+            continue
+        near.append(body)
+    return near
+
+
 def _flush_c_stdio() -> None:
     import ctypes
 
@@ -225,22 +241,30 @@ class Sim:
               margin: float) -> bool:
         reach = (self.scene.robot_radius if probe == self.probe else self.scene.cube_size) \
             + margin + 0.02
-        x, y = at[0], at[1]
-        near = []
-        # The distance from (x, y) to each footprint, compared without a square root: this
-        # runs for every state OMPL checks, and most states are far from every body.
-        for body in bodies:
-            cx, cy, hx, hy = self.extent.get(body) or self.footprint(body)
-            dx, dy = abs(x - cx) - hx, abs(y - cy) - hy
-            if dx > reach or dy > reach or (dx > 0 < dy and dx * dx + dy * dy > reach * reach):
-                continue
-            near.append(body)
-        if not near:
-            return False
+        near = _near(at[0], at[1], [(body, self.footprint(body)) for body in bodies], reach)
+        return bool(near) and self._touches(probe, at, near, margin)
+
+    def _touches(self, probe: int, at: tuple[float, float, float], bodies: list[int],
+                 margin: float) -> bool:
         p = self.p
         p.resetBasePositionAndOrientation(probe, at, [0, 0, 0, 1], physicsClientId=self.client)
         return any(p.getClosestPoints(probe, body, margin, physicsClientId=self.client)
-                   for body in near)
+                   for body in bodies)
+
+    def base_checker(self, cubes: list[str]) -> Callable[[float, float], bool]:
+        """`base_free(x, y, cubes)` for the many states of one OMPL solve: nothing moves
+        while OMPL plans, so the bodies and their footprints are looked up once."""
+        r = self.scene.robot_radius
+        x0, x1, y0, y1 = self.scene.bounds
+        boxes = [(body, self.footprint(body)) for body in self.walls + [self.cubes[c] for c in cubes]]
+
+        def free(x: float, y: float) -> bool:
+            if not (x0 + r <= x <= x1 - r and y0 + r <= y <= y1 - r):
+                return False
+            near = _near(x, y, boxes, r + 0.02)
+            return not (near and self._touches(self.probe, (x, y, PROBE_Z), near, 0.0))
+
+        return free
 
     def footprint(self, body: int) -> tuple[float, float, float, float]:
         """Centre and half sizes on the floor: fixed for walls, read for cubes (they move)."""

@@ -89,6 +89,14 @@ class SceneState:
             found = held if held is not None and self.lifted(held) else None
         return found if cube is None or found == cube else None
 
+    def bookkeeping(self) -> tuple[object, ...]:
+        """Everything here that is not read from the simulation (paths are compared by
+        value, cheaply: an unchanged path is the same object)."""
+        paths = tuple((t.name, t.target, t.path, t.goal, frozenset(t.clearing), t.executing,
+                       t.layout) for t in self.trajectories.values())
+        return (self.handled, self.releasing, frozenset(self.carried),
+                tuple(self.out_of_reach.items()), tuple(self.poses.items()), paths)
+
     def check_objects(self) -> None:
         known = set(self.cube_names) | {r.name for r in self.scene.regions}
         poses = set(self.task.objects_of(self.type_of("pose")))
