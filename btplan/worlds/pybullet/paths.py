@@ -2,8 +2,8 @@
 
 A trajectory leads to a location (a cube, a region, a sampled pose). Its path is planned
 from where the robot is when it is needed: a path computed while the robot stood
-elsewhere is planned again before it is checked or followed, so `free(t)` always speaks
-about the path the robot would actually drive. Paths avoid walls; movable cubes are
+elsewhere is joined to the robot's pose, or planned again, before it is checked or
+followed, so `free(t)` always speaks about the path the robot would actually drive. Paths avoid walls; movable cubes are
 avoided when a detour exists, and otherwise the path goes through them and the cubes on
 it are reported as blocking, which is what makes the tree expand (the paper's Example 2).
 """

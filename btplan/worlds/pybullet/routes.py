@@ -1,4 +1,5 @@
-"""Named trajectories for the base: planned with OMPL, re-planned when they went stale.
+"""Named trajectories for the base: planned with OMPL; when they went stale, joined to
+the robot and the new goal by straight lines if those are free, planned again otherwise.
 
 Built on the scene state and the samplers (the approach pose at a trajectory's end);
 the conditions, the skills and refinement use it.

@@ -113,6 +113,41 @@ def test_blocks_is_checked_again_every_time_so_a_moved_cube_blocks_a_path(
     assert not room.check(("blocks", ("_", name)))
 
 
+def test_a_path_the_robot_drove_off_is_joined_from_where_it_stands_not_planned_again(
+        room: PyBulletWorld) -> None:
+    name = trajectory_to(room, "goal")
+    traj = room.state.trajectories[name]
+    before, solves = traj.path, len(room.routes.plan_seconds)
+    beside = before[len(before) // 2]
+    room.state.move_base((beside[0], beside[1] + 0.3, 0.0))  # far from the start, near the path
+    assert not room.check(("blocks", ("_", name)))
+    assert len(room.routes.plan_seconds) == solves and room.routes.joined == 1
+    assert traj.path[0] == room.state.base and traj.path[-1] == before[-1]
+    assert all(room.state.sim.base_free(x, y, []) for x, y, _ in traj.path)
+    assert max(distance(a, b) for a, b in zip(traj.path, traj.path[1:])) <= 0.05 + 1e-9
+    room.state.move_base((beside[0], beside[1] + 1.2, 0.0))  # too far from every waypoint
+    assert not room.check(("blocks", ("_", name)))
+    assert len(room.routes.plan_seconds) == solves + 1 and room.routes.joined == 1
+    assert traj.path[0] == room.state.base
+
+
+def test_a_path_to_a_cube_that_moved_a_little_is_extended_to_the_new_approach_pose(
+        room: PyBulletWorld) -> None:
+    name = trajectory_to(room, "green")
+    traj = room.state.trajectories[name]
+    solves = len(room.routes.plan_seconds)
+    room.state.put("green", (2.2, 1.1))
+    assert not room.check(("blocks", ("_", name)))
+    assert len(room.routes.plan_seconds) == solves and room.routes.joined == 1
+    green = room.state.location("green")
+    assert distance(traj.path[-1], green) <= room.scene.near and traj.goal == traj.path[-1]
+    assert all(room.state.sim.base_free(x, y, []) for x, y, _ in traj.path)
+    room.state.put("green", (4.0, -1.0))  # moved far: planned again
+    assert not room.check(("blocks", ("_", name)))
+    assert len(room.routes.plan_seconds) == solves + 1 and room.routes.joined == 1
+    assert distance(traj.path[-1], room.state.location("green")) <= room.scene.near
+
+
 def test_the_figure7_tree_runs_the_skills_over_many_ticks(room: PyBulletWorld) -> None:
     tree = BehaviorTree(figure7_tree(trajectory_to(room, "green"), trajectory_to(room, "goal")))
     statuses = [tree.tick(room) for _ in range(200)]
