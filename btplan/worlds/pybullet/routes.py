@@ -149,7 +149,7 @@ class Routes:
         head = motion.densify([robot[:2], path[first][:2]], robot, path[first], STEP)[:-1]
         if distance(traj.goal, goal) <= STALE_GOAL:
             return head + path[first:]
-        for last in range(len(path) - 2, max(first, len(path) - 2 - JOIN_BACK) - 1, -1):
+        for last in range(len(path) - 1, max(first, len(path) - 1 - JOIN_BACK) - 1, -1):
             if self._line_free(path[last], goal, cubes):
                 tail = motion.densify([path[last][:2], goal[:2]], path[last], goal, STEP)
                 return head + path[first:last] + tail
