@@ -3,8 +3,10 @@
 The paper's Youbot experiment has two agents that move cubes while the robot works; a
 scene lists such events so that a user can change the story without code. Each event
 fires once. `move` and `remove` act physically, through the pusher robot (pusher.py);
-`slip` and `teleport` act on the scene directly. A `when` event watches a literal through the world's own `check`, counts the
-ticks on which it becomes true, and fires `delay` ticks after the `count`-th time.
+`knock` sets a cube moving (off a shelf) and leaves the rest to the physics; `slip` and
+`teleport` act on the scene directly. A `when` event watches a literal through the
+world's own `check`, counts the ticks on which it becomes true, and fires `delay` ticks
+after the `count`-th time.
 """
 
 from __future__ import annotations
@@ -154,6 +156,10 @@ def apply(world: SceneState, pusher: Pusher | None, event: Event) -> str:
     if event.do == "teleport":
         world.put(cube, event.to)
         return f"{event.name}: {cube} teleported to {event.to}"
+    if event.do == "knock" and event.origin is not None and event.to is not None:
+        world.sim.knock(cube, event.origin, event.to)
+        world.sim.outside_changes += 1
+        return f"{event.name}: {cube} knocked off at {event.origin} towards {event.to}"
     if event.do in ("move", "remove") and pusher is not None:
         return pusher.take(event.name, cube, event.to, event.origin, event.do == "remove")
     if world.held == cube:

@@ -81,8 +81,10 @@ class Event:
     `do` is `move` (the agents' pusher pushes `cube` along the floor to `to`; a cube not
     in the scene is first set down at `origin`, outside it), `remove` (the pusher pushes it
     to `to`, or away from the robot, and it leaves the scene once past the bounds), `slip`
-    (the robot's grip fails and the cube falls) or `teleport` (`cube` jumps to `to`, or out
-    of the scene without `to`: tests).
+    (the robot's grip fails and the cube falls), `knock` (`cube` is set on whatever is
+    under `origin`, a shelf board or the floor, and knocked towards `to`: it slides off and
+    falls where the physics takes it) or `teleport` (`cube` jumps to `to`, or out of the
+    scene without `to`: tests).
     """
 
     name: str
@@ -118,7 +120,7 @@ class Scene:
 
 
 _TOML_AT = re.compile(r"\(at line (\d+), column (\d+)\)")
-DO = ("move", "remove", "slip", "teleport")
+DO = ("move", "remove", "slip", "knock", "teleport")
 KEYS: dict[str, tuple[str, ...]] = {
     "": ("world", "robot", "wall", "cube", "region", "event"),
     "world": ("bounds", "tick_seconds", "speed", "cube_size"),
@@ -295,6 +297,9 @@ class _Reader:
         origin = self.point(t["from"], "from") if "from" in t else None
         if do == "move" and to is None:
             raise self.fail(f"event '{shown}': a move needs 'to = [x, y]'", name)
+        if do == "knock" and (to is None or origin is None or to == origin):
+            raise self.fail(f"event '{shown}': a knock needs 'from = [x, y]' (where the cube "
+                            "sits) and a different 'to = [x, y]' (the way it is knocked)", name)
         tick = int(self.scalar(t, "tick", 0, whole=True)) if "tick" in t else None
         count = int(self.scalar(t, "count", 1, whole=True, least=1))
         delay = int(self.scalar(t, "delay", 0, whole=True))

@@ -27,6 +27,7 @@ PARKED_Z = -10.0    # cubes not in the scene (yet, or any more) wait far below t
 CUBE_MASS = 0.1     # kilograms
 SOLVER_ITERATIONS = 15
 PROBE_Z = 0.5       # half the height of the base's collision probe (the folded arm is ~0.9 m)
+KNOCK_SPEED = 2.0   # m/s given to a knocked cube: it slides off a shelf board and falls
 
 
 @contextlib.contextmanager
@@ -210,6 +211,23 @@ class Sim:
         self.p.resetBasePositionAndOrientation(body, [x, y, z], [0, 0, 0, 1],
                                                physicsClientId=self.client)
         self.p.resetBaseVelocity(body, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
+
+    def knock(self, name: str, at: Point, toward: Point) -> None:
+        """Set a cube on top of what is under `at` (a shelf board, or the floor) and give
+        it a horizontal speed towards `toward`: from there on the physics moves it."""
+        self.moved()
+        body = self.cubes[name]
+        if self.robot.gripped == body:
+            self.robot.detach()
+        top = max((w.z + w.height for w, wall in zip(self.scene.walls, self.walls)
+                   if _near(at[0], at[1], [(wall, self.extent[wall])], 0.0)), default=0.0)
+        dx, dy = toward[0] - at[0], toward[1] - at[1]
+        length = math.hypot(dx, dy)
+        self.p.resetBasePositionAndOrientation(
+            body, [at[0], at[1], top + self.scene.cube_size / 2 + 0.002], [0, 0, 0, 1],
+            physicsClientId=self.client)
+        self.p.resetBaseVelocity(body, [dx / length * KNOCK_SPEED, dy / length * KNOCK_SPEED, 0.0],
+                                 [0, 0, 0], physicsClientId=self.client)
 
     def cube_position(self, name: str) -> tuple[float, float, float]:
         known = self._positions.get(name)

@@ -148,6 +148,53 @@ def test_a_path_to_a_cube_that_moved_a_little_is_extended_to_the_new_approach_po
     assert distance(traj.path[-1], room.state.location("green")) <= room.scene.near
 
 
+SHELF = """
+[[wall]]
+name = "shelf"
+center = [3.0, -1.2]
+size = [0.4, 0.4]
+height = 0.04
+z = 0.6
+"""
+
+KNOCK = """
+[[event]]
+name = "cat"
+do = "knock"
+cube = "red"
+from = [3.0, -1.1]
+to = [3.0, 0.0]
+tick = 2
+"""
+
+
+def test_a_cube_knocked_off_a_shelf_falls_and_comes_to_rest_on_the_floor(tmp_path: Path) -> None:
+    from sim_scenes import OPEN_ROOM
+
+    world = open_world(TASK, write_scene(tmp_path, OPEN_ROOM + SHELF, KNOCK), seed=3)
+    try:
+        (agents,) = world.scene_agents()
+        assert agents.act(world, 1) == [] and not world.state.present("red")
+        (news,) = agents.act(world, 2)
+        assert news.description.startswith("cat: red knocked off")
+        assert world.state.sim.cube_position("red")[2] > 0.64  # on the board
+        assert world.outside_changes == 1
+        for _ in range(3 * 240):  # three simulated seconds
+            world.state.sim.step()
+        x, y, _ = world.state.sim.cube_position("red")
+        assert world.state.resting("red") and world.state.present("red")
+        assert abs(x - 3.0) < 0.2 and -0.95 < y < 0.0  # off the board's edge, the way it went
+    finally:
+        world.close()
+
+
+def test_a_knock_needs_where_the_cube_sits_and_where_it_goes(tmp_path: Path) -> None:
+    from btplan.errors import InputError
+
+    with pytest.raises(InputError, match="a knock needs 'from"):
+        open_world(TASK, write_scene(tmp_path, events=KNOCK.replace("to = [3.0, 0.0]\n", "")))
+
+
 def test_the_figure7_tree_runs_the_skills_over_many_ticks(room: PyBulletWorld) -> None:
     tree = BehaviorTree(figure7_tree(trajectory_to(room, "green"), trajectory_to(room, "goal")))
     statuses = [tree.tick(room) for _ in range(200)]
