@@ -97,8 +97,10 @@ def plan(
 
     Without explicit `options`, the fallback strategies run without the last-resort
     search; with `last_resort`, the default options with it come second, right after
-    the default options without it (a stuck condition is then planned by search).
-    Explicit options run as they are.
+    the default options without it (a stuck condition is then planned by search), and
+    when every strategy fails, a plan for the whole goal is searched from the initial
+    state and put behind the goal tree (with a time limit, backchaining has
+    BACKCHAIN_SHARE of it). Explicit options run as they are.
 
     Raises a PlanningError (NoAchieverError, UnresolvableConflictError,
     NoProgressError, BudgetExceededError) with a reason when no tree is found, and
@@ -132,7 +134,7 @@ def plan(
                            started, models, stop, error)
 
 
-BACKCHAIN_SHARE = 2 / 3
+BACKCHAIN_SHARE = 0.8
 """The share of a time limit backchaining gets before the whole-goal search (the last resort)."""
 
 
