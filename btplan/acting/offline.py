@@ -184,6 +184,9 @@ def _whole_goal(
 ) -> PlanResult:
     """The last resort when backchaining failed: search a plan for the whole goal from
     the initial state and put it behind the goal tree (rescue.plan_whole_goal)."""
+    proof = _unsolvable(task, models)
+    if proof is not None:
+        raise type(backchaining)(f"{backchaining.reason}; and no plan exists: {proof}")
     engine = models.subgoal_search
     start = SymbolicWorld(task, seed=seed).facts()
     steps = engine.search(start, list(task.goal_literals), max_states=WHOLE_STATES,
@@ -201,6 +204,19 @@ def _whole_goal(
                       models, stop, plan=steps)
     result.stats.whole_goal = True
     return result
+
+
+def _unsolvable(task: Task, models: AchieverIndex) -> str | None:
+    """Why the goal can never hold, when h^2 proves it (the search would be in vain)."""
+    goals = [g for g in task.goal_literals if g.positive]
+    for goal in goals:
+        if models.mutexes.unreachable(goal.atom):
+            return f"{goal} can never hold (h^2 mutexes)"
+    for i, first in enumerate(goals):
+        for second in goals[i + 1:]:
+            if models.mutexes.exclusive(first, second):
+                return f"{first} and {second} can never hold together (h^2 mutexes)"
+    return None
 
 
 WHOLE_STATES = 1_000_000

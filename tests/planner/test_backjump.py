@@ -15,7 +15,7 @@ import pytest
 from btplan.acting.offline import load, plan
 from btplan.bt import Action, Condition, Fallback
 from btplan.bt import Sequence as SequenceNode
-from btplan.errors import BudgetExceededError, NoAchieverError
+from btplan.errors import BudgetExceededError, NoAchieverError, PlanningError
 from btplan.model import Atom, GroundLiteral, Task
 from btplan.planner import PlannerOptions
 from btplan.planner.backjump import achiever_choice, enclosing_choices, running_choices
@@ -99,3 +99,14 @@ def test_the_whole_goal_is_searched_for_when_backchaining_gives_up() -> None:
     assert result.stats.whole_goal and result.stats.expansions == 0
     validate(task, result.executed)
     assert [str(a) for a in replay(task, result)] == [str(a) for a in result.executed]
+
+
+def test_the_whole_goal_is_not_searched_for_when_h2_proves_it_never_holds(
+        tmp_path: Path) -> None:
+    # Making p destroys q and what q needs: p and q never hold together.
+    (tmp_path / "domain.pddl").write_text(TRAP_DOMAIN)
+    (tmp_path / "problem.pddl").write_text(
+        "(define (problem both) (:domain trap) (:init (s)) (:goal (and (p) (q))))")
+    task = load(str(tmp_path / "domain.pddl"), str(tmp_path / "problem.pddl"))
+    with pytest.raises(PlanningError, match=r"no plan exists: p\(\) and q\(\) can never hold"):
+        plan(task)
