@@ -190,11 +190,11 @@ def _whole_goal(
     engine = models.subgoal_search
     start = SymbolicWorld(task, seed=seed).facts()
     steps = engine.search(start, list(task.goal_literals), max_states=WHOLE_STATES,
-                          deadline=deadline)
+                          deadline=deadline, max_stored=WHOLE_STORED)
     if steps is None:
         why = ("no plan exists" if engine.exhausted
                else "time limit reached" if deadline is not None
-               and time.perf_counter() > deadline else "state budget reached")
+               and time.perf_counter() > deadline else "memory bound of stored states reached")
         error = type(backchaining)(
             f"{backchaining.reason}; then the search for the whole goal from the initial state "
             f"found no plan ({why} after {engine.expanded} states)")
@@ -221,6 +221,10 @@ def _unsolvable(task: Task, models: AchieverIndex) -> str | None:
 
 WHOLE_STATES = 1_000_000
 """States the whole-goal search may expand; the time limit usually comes first."""
+
+WHOLE_STORED = 200_000
+"""States the whole-goal search may keep: about 4 KB each on child-snack, whose
+states have a thousand successors (1.5 GB in 30 s without this bound)."""
 
 
 def _retrying(

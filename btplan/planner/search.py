@@ -123,8 +123,12 @@ class SubgoalSearch:
         max_states: int = MAX_STATES,
         deadline: float | None = None,
         keep: Sequence[GroundLiteral] = (),
+        max_stored: int | None = None,
     ) -> list[GroundAction] | None:
         """A plan from `start` to a state where every goal literal holds, or None.
+
+        `max_stored` bounds the states kept (each a set of atoms: memory, where
+        branching is wide).
 
         No step may make a `keep` literal false: the plan runs where earlier siblings
         re-check their conditions on every tick, so undoing one would send the tree
@@ -157,6 +161,8 @@ class SubgoalSearch:
                 continue
             expanded = self.expanded = expanded + 1
             if deadline is not None and expanded % 32 == 0 and time.perf_counter() > deadline:
+                return None
+            if max_stored is not None and len(parents) > max_stored:
                 return None
             for i in self.applicable(state):
                 if keep and any(_falsifies(self.actions[i], k) for k in keep):
