@@ -43,6 +43,7 @@ from btplan.planner import (
     resolve_conflicts,
 )
 from btplan.planner.achievers import ALL, guards
+from btplan.planner.backjump import Choice, conflict_choices, enclosing_choices, running_choices
 from btplan.planner.conflicts import achiever_leaves, alternative_conflicts
 from btplan.planner.expand import (
     achiever_sequence,
@@ -56,7 +57,7 @@ from btplan.planner.expand import (
 from btplan.planner.lookahead import closest_first, keep_reachable, needed_later
 from btplan.planner.protect import white_knights
 from btplan.planner.agenda import goal_agenda
-from btplan.planner.rescue import Rescuer
+from btplan.planner.rescue import Rescuer, plan_whole_goal
 
 STUCK_EXPANSIONS = 8
 """Expansions of one condition after which it counts as stuck (for `search_stuck`)."""
@@ -131,9 +132,14 @@ class BlendedLoop:
         options: PlannerOptions | None = None,
         like: AchieverIndex | None = None,
         look_ahead: bool = False,
+        banned: frozenset[Choice] = frozenset(),
     ) -> None:
         """`like`: an index of the same task to share models with; `look_ahead`: also
-        expand, in the same tick, the later preconditions that are false (btplan.acting.ahead)."""
+        expand, in the same tick, the later preconditions that are false (btplan.acting.ahead);
+        `banned`: (condition, action) choices never used (btplan.planner.backjump)."""
+        self.banned = banned
+        self.culprits: list[Choice] = []
+        """When planning stopped: the achiever choices to give up first (backjump.py)."""
         self.task = task
         self.look_ahead = look_ahead
         self._ahead: list[Node] = []
@@ -220,6 +226,9 @@ class BlendedLoop:
         if after != before and boundary:
             key = (after, len(self.expansions))
             if key in self._seen:
+                executed = getattr(self.world, "executed", [])
+                if executed:  # the same state under the same tree: drop what ran in the loop
+                    self.culprits = running_choices(self.tree.root, executed[-1].key)
                 raise NoProgressError(self._loop_reason())
             self._seen.add(key)
         self._last_state = after
@@ -240,6 +249,7 @@ class BlendedLoop:
                 if searched is not None:
                     return searched
                 if self._tally[literal] >= ROUND_EXPANSIONS and self.options.refine_more:
+                    self.culprits = enclosing_choices(node)
                     raise NoProgressError(
                         f"{literal} was expanded {self._tally[literal]} times: the tree goes "
                         f"round (expanded most often: {self.most_expanded()})")
@@ -261,6 +271,7 @@ class BlendedLoop:
             if searched is not None:
                 return searched
         if missing:
+            self.culprits = list(dict.fromkeys(c for n in stuck for c in enclosing_choices(n)))
             raise NoAchieverError(self._no_achiever_reason(missing))
         return None
 
@@ -295,14 +306,22 @@ class BlendedLoop:
         and the ranked candidates left over (for backtracking)."""
         width = self.options.max_alternatives
         if not self.options.avoid_dead_ends:
-            achievers = self.index.achievers(literal, state, self.world.refine)
-            return self._non_circular(achievers, node, literal), []
+            achievers = self.index.achievers(literal, state, self.world.refine,
+                                             ALL if self.banned else None)
+            allowed = self._allowed(self._non_circular(achievers, node, literal), literal)
+            return allowed[:width], []
         # Rank every candidate, so that dropping dead ends still leaves `width` of them.
         achievers = self.index.achievers(literal, state, self.world.refine, ALL)
-        achievers = self._non_circular(achievers, node, literal)
+        achievers = self._allowed(self._non_circular(achievers, node, literal), literal)
         kept = keep_reachable(achievers, needed_later(node), self.index.relaxed, state, width)
         chosen = {a.key for a in kept}  # keys: comparing whole actions is slow
         return kept, [a for a in achievers if a.key not in chosen]
+
+    def _allowed(self, achievers: list[GroundAction], literal: GroundLiteral) -> list[GroundAction]:
+        """Achievers not banned for this condition by an earlier attempt."""
+        if not self.banned:
+            return achievers
+        return [a for a in achievers if (literal, a.key) not in self.banned]
 
     def _non_circular(
         self, achievers: list[GroundAction], node: Node, literal: GroundLiteral
@@ -363,7 +382,8 @@ class BlendedLoop:
             present = {leaf.key for leaf in achiever_leaves(fallback)}
             limit = len(present) + self.options.max_alternatives
             found = self.index.achievers(literal, state, self.world.refine, limit)
-            fresh = [a for a in non_circular(found, pursued(node)) if a.key not in present]
+            fresh = [a for a in self._allowed(non_circular(found, pursued(node)), literal)
+                     if a.key not in present]
             if fresh and len(self.expansions) >= self.options.max_expansions:
                 raise BudgetExceededError(
                     f"the expansion budget ({self.options.max_expansions}) ran out "
@@ -458,7 +478,9 @@ class BlendedLoop:
                     self.options.refine_more,
                 )
             except UnresolvableConflictError as error:
-                first = first or error
+                if first is None:
+                    first = error
+                    self.culprits = conflict_choices(subtree, self._judge())
                 _unexpand(self.tree, subtree, node)
                 continue
             return self._record(literal, batch, len(resolution.conflicts), resolution.moves)
@@ -502,6 +524,15 @@ class BlendedLoop:
         self._dead.update([*checks, node])
         self.searches += 1
         return self._record(literal, steps, 0, 0)
+
+    def adopt_plan(self, steps: list[GroundAction]) -> None:
+        """Put a plan for the whole goal behind the goal tree (`plan_whole_goal`)."""
+        checks = plan_whole_goal(self.tree, self.task, steps)
+        for action in steps:
+            self.grounding[action.key] = action
+        self._expanded.update(checks)
+        self._dead.update(checks)
+        self.searches += 1
 
     def _protect(self, subtree: Fallback) -> None:
         """Check, before each new achiever, what keeps the other goals reachable."""

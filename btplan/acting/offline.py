@@ -22,6 +22,7 @@ from btplan.bt import BehaviorTree, LeafKey
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex, PlannerOptions
+from btplan.planner.backjump import Choice
 from btplan.worlds.symbolic import SymbolicWorld
 
 if TYPE_CHECKING:
@@ -64,6 +65,10 @@ class PlanStats:
     """Stuck conditions planned by the last-resort search and inserted as subtrees."""
     cost: float = 0.0
     """The executed plan's cost: the sum of its actions' costs (its length in unit cost)."""
+    retries: int = 0
+    """Attempts started over, each without an achiever choice that failed (backjump.py)."""
+    whole_goal: bool = False
+    """Whether the tree is the last resort's: a searched plan for the whole goal."""
 
 
 @dataclass
@@ -92,8 +97,10 @@ def plan(
 
     Without explicit `options`, the fallback strategies run without the last-resort
     search; with `last_resort`, the default options with it come second, right after
-    the default options without it (a stuck condition is then planned by search).
-    Explicit options run as they are.
+    the default options without it (a stuck condition is then planned by search), and
+    when every strategy fails, a plan for the whole goal is searched from the initial
+    state and put behind the goal tree (with a time limit, backchaining has
+    BACKCHAIN_SHARE of it). Explicit options run as they are.
 
     Raises a PlanningError (NoAchieverError, UnresolvableConflictError,
     NoProgressError, BudgetExceededError) with a reason when no tree is found, and
@@ -110,13 +117,43 @@ def plan(
         strategies = fallback_strategies(replace(opts, search_stuck=False))
         if last_resort:  # right after the default: later strategies may use up the time
             strategies.insert(1, opts)
+    models = AchieverIndex(task)  # the relaxed model and mutexes, built once for all
+    whole = last_resort and options is None
+    soft = deadline
+    if whole and timeout:  # leave the whole-goal search its share of the time
+        soft = started + timeout * BACKCHAIN_SHARE
+    try:
+        return _strategies(task, seed, strategies, max_ticks, soft,
+                           None if soft is None else soft - started, on_expansion, started,
+                           models, stop)
+    except PlanningError as error:
+        out_of_time = deadline is not None and time.perf_counter() >= deadline
+        if not whole or out_of_time:
+            raise
+        return _whole_goal(task, seed, opts, max_ticks, deadline, timeout, on_expansion,
+                           started, models, stop, error)
+
+
+BACKCHAIN_SHARE = 0.8
+"""The share of a time limit backchaining gets before the whole-goal search (the last resort)."""
+
+
+def _strategies(
+    task: Task, seed: int, strategies: list[PlannerOptions], max_ticks: int,
+    deadline: float | None, timeout: float | None,
+    on_expansion: Callable[[BehaviorTree, Expansion], None] | None, started: float,
+    models: AchieverIndex, stop: Callable[[], bool] | None,
+) -> PlanResult:
+    """The strategies in turn; the first error, saying what the others did, when all fail."""
     first_error: PlanningError | None = None
     found: PlanResult | None = None
-    models = AchieverIndex(task)  # the relaxed model and mutexes, built once for all
-    for strategy in strategies:
+    given_up: list[Choice] = []
+    for number, strategy in enumerate(strategies):
+        if number:  # the later strategies start from scratch, without retries
+            strategy = replace(strategy, retries=0)
         try:
-            result = _attempt(task, seed, strategy, max_ticks, deadline, timeout, on_expansion,
-                              started, models, stop)
+            result = _retrying(task, seed, strategy, max_ticks, deadline, timeout, on_expansion,
+                               started, models, stop, given_up)
         except BudgetExceededError:
             if found is not None:
                 return found
@@ -132,8 +169,112 @@ def plan(
     assert first_error is not None
     if len(strategies) > 1:
         first_error.reason += f" (and {len(strategies) - 1} fallback strategies failed too)"
-        first_error.args = (first_error.reason,)
+    if given_up:
+        first_error.reason += (f"; {len(given_up)} attempts started over without a choice that"
+                               f" failed ({_choices(given_up)})")
+    first_error.args = (first_error.reason,)
     raise first_error
+
+
+def _whole_goal(
+    task: Task, seed: int, opts: PlannerOptions, max_ticks: int, deadline: float | None,
+    timeout: float | None, on_expansion: Callable[[BehaviorTree, Expansion], None] | None,
+    started: float, models: AchieverIndex, stop: Callable[[], bool] | None,
+    backchaining: PlanningError,
+) -> PlanResult:
+    """The last resort when backchaining failed: search a plan for the whole goal from
+    the initial state and put it behind the goal tree (rescue.plan_whole_goal)."""
+    proof = _unsolvable(task, models)
+    if proof is not None:
+        raise type(backchaining)(f"{backchaining.reason}; and no plan exists: {proof}")
+    engine = models.subgoal_search
+    start = SymbolicWorld(task, seed=seed).facts()
+    steps = engine.search(start, list(task.goal_literals), max_states=WHOLE_STATES,
+                          deadline=deadline, max_stored=WHOLE_STORED)
+    if steps is None:
+        why = ("no plan exists" if engine.exhausted
+               else "time limit reached" if deadline is not None
+               and time.perf_counter() > deadline else "memory bound of stored states reached")
+        error = type(backchaining)(
+            f"{backchaining.reason}; then the search for the whole goal from the initial state "
+            f"found no plan ({why} after {engine.expanded} states)")
+        raise error
+    options = replace(opts, search_stuck=False, retries=0)
+    result = _attempt(task, seed, options, max_ticks, deadline, timeout, on_expansion, started,
+                      models, stop, plan=steps)
+    result.stats.whole_goal = True
+    return result
+
+
+def _unsolvable(task: Task, models: AchieverIndex) -> str | None:
+    """Why the goal can never hold, when h^2 proves it (the search would be in vain)."""
+    goals = [g for g in task.goal_literals if g.positive]
+    for goal in goals:
+        if models.mutexes.unreachable(goal.atom):
+            return f"{goal} can never hold (h^2 mutexes)"
+    for i, first in enumerate(goals):
+        for second in goals[i + 1:]:
+            if models.mutexes.exclusive(first, second):
+                return f"{first} and {second} can never hold together (h^2 mutexes)"
+    return None
+
+
+WHOLE_STATES = 1_000_000
+"""States the whole-goal search may expand; the time limit usually comes first."""
+
+WHOLE_STORED = 200_000
+"""States the whole-goal search may keep: about 4 KB each on child-snack, whose
+states have a thousand successors (1.5 GB in 30 s without this bound)."""
+
+
+def _retrying(
+    task: Task, seed: int, opts: PlannerOptions, max_ticks: int, deadline: float | None,
+    timeout: float | None, on_expansion: Callable[[BehaviorTree, Expansion], None] | None,
+    started: float, models: AchieverIndex, stop: Callable[[], bool] | None,
+    given_up: list[Choice],
+) -> PlanResult:
+    """Attempts of one strategy, each after a failure without one more achiever choice.
+
+    When an attempt stops (no conflict-free place, a dead end, a loop), the choice the
+    loop blames (btplan/planner/backjump.py) is banned and the attempt starts over from
+    the initial state, up to `opts.retries` times; the choices given up are
+    appended to `given_up`. Raises the first attempt's error when none succeeds.
+    """
+    banned: list[Choice] = []
+    first: PlanningError | None = None
+    for attempt in range(opts.retries + 1):
+        culprits: list[Choice] = []
+        try:
+            result = _attempt(task, seed, opts, max_ticks, deadline, timeout, on_expansion,
+                              started, models, stop, frozenset(banned), culprits)
+        except BudgetExceededError:
+            raise
+        except PlanningError as error:
+            first = first or error
+            fresh = [c for c in culprits if c not in banned]
+            late = deadline is not None and time.perf_counter() > started + RETRY_SHARE * (
+                deadline - started)
+            if not fresh or attempt == opts.retries or late:
+                break
+            banned.append(fresh[0])
+            given_up.append(fresh[0])
+            continue
+        result.stats.retries = len(banned)
+        return result
+    assert first is not None
+    raise first
+
+
+RETRY_SHARE = 1 / 3
+"""No attempt starts over once this share of the time allowed is used: the fallback
+strategies and the last resort need the rest."""
+
+
+def _choices(choices: list[Choice], shown: int = 3) -> str:
+    """`on(a, b) by stack(a, b), ...`: the choices given up, the first few."""
+    listed = [f"{literal} by {name}({', '.join(args)})" for literal, (name, args) in choices]
+    more = f", and {len(listed) - shown} more" if len(listed) > shown else ""
+    return ", ".join(listed[:shown]) + more
 
 
 def fallback_strategies(options: PlannerOptions) -> list[PlannerOptions]:
@@ -169,11 +310,45 @@ def _attempt(
     started: float,
     models: AchieverIndex,
     stop: Callable[[], bool] | None = None,
+    banned: frozenset[Choice] = frozenset(),
+    culprits: list[Choice] | None = None,
+    plan: list[GroundAction] | None = None,
 ) -> PlanResult:
-    """Rounds of Algorithm 1 from the initial state until one needs no expansion."""
+    """Rounds of Algorithm 1 from the initial state until one needs no expansion.
+
+    `banned` choices are never used; when planning stops, `culprits` receives the
+    choices the loop blames. `plan`, a plan for the whole goal, goes behind the goal
+    tree before the first tick.
+    """
     groundings: dict[LeafKey, GroundAction] = {}
     world = SymbolicWorld(task, seed=seed, groundings=groundings)
-    loop = BlendedLoop(task, world, opts, like=models)
+    loop = BlendedLoop(task, world, opts, like=models, banned=banned)
+    if plan is not None:
+        loop.adopt_plan(plan)
+    try:
+        return _rounds(task, seed, opts, max_ticks, deadline, timeout, on_expansion, started,
+                       loop, groundings, stop)
+    finally:
+        if culprits is not None:
+            culprits.extend(loop.culprits)
+
+
+def _rounds(
+    task: Task,
+    seed: int,
+    opts: PlannerOptions,
+    max_ticks: int,
+    deadline: float | None,
+    timeout: float | None,
+    on_expansion: Callable[[BehaviorTree, Expansion], None] | None,
+    started: float,
+    loop: BlendedLoop,
+    groundings: dict[LeafKey, GroundAction],
+    stop: Callable[[], bool] | None,
+) -> PlanResult:
+    """The runs of one attempt, each from the initial state."""
+    world = loop.world
+    assert isinstance(world, SymbolicWorld)
     loop.deadline = deadline
     ticks_left = max_ticks
 

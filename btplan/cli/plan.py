@@ -82,7 +82,8 @@ def plan_command(
         "--paper", help="Algorithms 1-3 exactly as published, without btplan's extensions.")
     ] = False,
     no_search: Annotated[bool, typer.Option(
-        "--no-search", help="Never plan a stuck condition by search (the last resort).")
+        "--no-search", help="Never search (the last resort: for a stuck condition, or for "
+        "the whole goal when backchaining fails).")
     ] = False,
     timeout: Annotated[float, typer.Option(
         "--timeout", metavar="SECONDS",
@@ -215,6 +216,10 @@ def summary(result: PlanResult) -> str:
         f"[green]planned[/]: {s.expansions} expansions, {s.conflicts_resolved} conflicts "
         f"resolved ({s.moves} moves), tree of {s.tree_size} nodes, {s.actions_executed} actions "
         f"executed (cost {s.cost:g}), {s.seconds:.3f} s"
-        + (f"; last resort: {s.searches} stuck conditions planned by search"
+        + ("; last resort: the whole goal planned by search from the initial state"
+           if s.whole_goal else
+           f"; last resort: {s.searches} stuck conditions planned by search"
            if s.searches else "")
+        + (f"; {s.retries} attempts started over without a choice that failed"
+           if s.retries else "")
     )

@@ -120,6 +120,13 @@ class Mutexes:
             return atom in self._index and self.groups.covers(atom)
         return atom in self._index
 
+    def unreachable(self, atom: Atom) -> bool:
+        """True when h^2 proves `atom` never holds (never when invariants stand in for h^2)."""
+        if self.groups is not None:
+            return False
+        i = self._index.get(atom)
+        return i is not None and not self._reached >> i & 1
+
     def exclusive(self, a: GroundLiteral, b: GroundLiteral) -> bool:
         """True when `a` and `b` can never hold at the same time (as far as h^2 sees)."""
         if a.atom == b.atom:

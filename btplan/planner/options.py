@@ -27,6 +27,8 @@ class PlannerOptions:
     skips bindings with a precondition unreachable from the state while enumerating,
     so `max_bindings` counts only bindings that could run. `backtrack` tries the
     next-ranked achievers when the chosen ones have no conflict-free place.
+    `retries` starts a failed attempt over that many times, each time without one more
+    achiever choice the failure is blamed on (btplan/planner/backjump.py).
     `search_stuck`, the last resort, plans a stuck condition by a complete search
     (btplan/planner/search.py) and inserts the plan as a subtree. `goal_agenda` orders
     the goals by reasonable orders before the tree is built (btplan/planner/agenda.py).
@@ -49,6 +51,7 @@ class PlannerOptions:
     avoid_dead_ends: bool = True
     prune_bindings: bool = True
     backtrack: bool = True
+    retries: int = 6
     search_stuck: bool = True
     goal_agenda: bool = True
     stall_limit: int = 3
@@ -59,6 +62,6 @@ class PlannerOptions:
         """Algorithms 1-3 as published: first-match order, no extensions."""
         base = cls(heuristic=False, reorder_goals=False, mutexes=False, refine_more=False,
                    closest_first=False, avoid_dead_ends=False, prune_bindings=False,
-                   backtrack=False, search_stuck=False,
+                   backtrack=False, retries=0, search_stuck=False,
                    goal_agenda=False)
         return replace(base, **changes)

@@ -21,7 +21,7 @@ from btplan.bt import BehaviorTree, Fallback, Node
 from btplan.bt import Sequence as SequenceNode
 from btplan.model import Atom, GroundAction, GroundLiteral, Task
 from btplan.planner.conflicts import guarantees, held_before, sequence_slots
-from btplan.planner.expand import action_node, condition_node, literal_of
+from btplan.planner.expand import GOAL_CHECK, action_node, condition_node, literal_of
 from btplan.planner.mutex import Mutexes
 from btplan.planner.search import SubgoalSearch
 
@@ -151,6 +151,25 @@ def merge_plan(
     before: Node = earlier[0] if len(earlier) == 1 else SequenceNode(earlier)
     sequence.insert(0, Fallback([SequenceNode(list(checks)), *alternatives, before]))
     return checks
+
+
+def plan_whole_goal(tree: BehaviorTree, task: Task, plan: Sequence[GroundAction]) -> list[Node]:
+    """Sequence(Fallback(the goal tree, the plan's steps), all goals hold): the last
+    resort for the whole task.
+
+    The goal tree stays first, so the tree still says what it is for and succeeds
+    where the goals hold; the plan's steps behind it are the teleo-reactive program of
+    `plan_alternatives`. A step that finishes within its tick makes the Fallback
+    succeed before the goal holds, so the final check (as in `initial_tree`) keeps the
+    tree from reporting SUCCESS until every goal does. Returns every condition leaf
+    of the new tree: none is expanded.
+    """
+    goals = tree.root
+    goal = list(task.goal_literals)
+    alternatives, _ = plan_alternatives(goal, plan, task)
+    final = SequenceNode([condition_node(g, task) for g in goal], name=GOAL_CHECK)
+    tree.root = SequenceNode([Fallback([goals, *alternatives]), final])
+    return [n for n in tree.root.walk() if literal_of(n) is not None]
 
 
 Rescued = tuple[GroundLiteral, list[GroundAction], list[Node]]

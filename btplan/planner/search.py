@@ -28,6 +28,10 @@ class SubgoalSearch:
 
     def __init__(self, actions: Sequence[GroundAction]) -> None:
         self.actions = [a for a in actions if not a.delete_patterns]
+        self.expanded = 0
+        """States the last search expanded (for the failure message)."""
+        self.exhausted = False
+        """Whether the last search ran out of states to look at (no plan exists)."""
         self._ids: dict[Atom, int] = {}
         self._pre: list[tuple[int, ...]] = []
         self._add: list[tuple[int, ...]] = []
@@ -119,8 +123,12 @@ class SubgoalSearch:
         max_states: int = MAX_STATES,
         deadline: float | None = None,
         keep: Sequence[GroundLiteral] = (),
+        max_stored: int | None = None,
     ) -> list[GroundAction] | None:
         """A plan from `start` to a state where every goal literal holds, or None.
+
+        `max_stored` bounds the states kept (each a set of atoms: memory, where
+        branching is wide).
 
         No step may make a `keep` literal false: the plan runs where earlier siblings
         re-check their conditions on every tick, so undoing one would send the tree
@@ -142,7 +150,8 @@ class SubgoalSearch:
         # Deferred evaluation: a child waits with its parent's estimate and is evaluated
         # only when taken; children of helpful actions are taken first on ties.
         queue: list[tuple[float, int, int, frozenset[Atom]]] = [(0.0, 0, next(counter), start)]
-        expanded = 0
+        expanded = self.expanded = 0
+        self.exhausted = False
         while queue and expanded < max_states:
             _, _, _, state = heapq.heappop(queue)
             if all(g.holds(state) for g in goal):
@@ -150,8 +159,10 @@ class SubgoalSearch:
             h, helpful = estimate(state)
             if h == float("inf"):
                 continue
-            expanded += 1
+            expanded = self.expanded = expanded + 1
             if deadline is not None and expanded % 32 == 0 and time.perf_counter() > deadline:
+                return None
+            if max_stored is not None and len(parents) > max_stored:
                 return None
             for i in self.applicable(state):
                 if keep and any(_falsifies(self.actions[i], k) for k in keep):
@@ -161,6 +172,7 @@ class SubgoalSearch:
                     continue
                 parents[child] = (state, i)
                 heapq.heappush(queue, (h, 0 if i in helpful else 1, next(counter), child))
+        self.exhausted = not queue
         return None
 
     def _path(
