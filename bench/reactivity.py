@@ -7,7 +7,7 @@ docs/reactivity.png from those rows: medians with 95% intervals, the targets met
 missed per rate, and an explanation of every failed run of btplan (does replanning
 without a per-tick limit fail on the same seed too?).
 
-Run:  python bench/reactivity.py --sweep [--seeds 1000] [--jobs 2]   (hours on 2 cores)
+Run:  python bench/reactivity.py --sweep [--first 0] [--seeds 1000] [--jobs 2]   (hours)
       python bench/reactivity.py                                    (report from the rows)
 The report reads every .parquet and .csv file of bench/results/, so extra seeds can be
 swept into files of their own (`--seeds 1000:2000 -o bench/results/obstacle_2.parquet`).
@@ -58,13 +58,14 @@ def command(case: Case, seeds: range, jobs: int, out: Path) -> list[str]:
             "-j", str(jobs), "-q", "-o", str(out)]
 
 
-def sweep(seeds: int, jobs: int, scenarios: Sequence[str]) -> None:
-    """Sweep the chosen scenarios in chunks of CHUNK seeds, interleaved, then merge each
-    scenario's chunks into bench/results/SCENARIO.parquet (a failed chunk is left out)."""
+def sweep(seeds: int, jobs: int, scenarios: Sequence[str], first: int = 0) -> None:
+    """Sweep seeds first..seeds-1 of the chosen scenarios in chunks of CHUNK seeds,
+    interleaved, then merge each scenario's chunks into bench/results/SCENARIO.parquet,
+    over the rows it held for other seeds (a failed chunk is left out)."""
     cases = [c for c in CASES if c.scenario in scenarios]
     parts = RESULTS / "parts"
     parts.mkdir(parents=True, exist_ok=True)
-    for start in range(0, seeds, CHUNK):
+    for start in range(first, seeds, CHUNK):
         chunk = range(start, min(start + CHUNK, seeds))
         for case in cases:
             out = parts / f"{case.scenario}_{chunk.start}.parquet"
@@ -73,10 +74,15 @@ def sweep(seeds: int, jobs: int, scenarios: Sequence[str]) -> None:
             if subprocess.run(args, cwd=ROOT, check=False).returncode != 0:
                 out.unlink(missing_ok=True)
     for case in cases:
+        merged = RESULTS / f"{case.scenario}.parquet"
         rows = [r for path in sorted(parts.glob(f"{case.scenario}_*.parquet"))
                 for r in read_rows(str(path))]
-        if rows:
-            write_rows(str(RESULTS / f"{case.scenario}.parquet"), rows)
+        if not rows:
+            continue
+        new = {(r["method"], float(r["rate"]), int(r["seed"])) for r in rows}
+        kept = [r for r in (read_rows(str(merged)) if merged.exists() else [])
+                if (r["method"], float(r["rate"]), int(r["seed"])) not in new]
+        write_rows(str(merged), kept + rows)
 
 
 # --- the report --------------------------------------------------------------------------
@@ -222,13 +228,14 @@ def load_rows(folder: Path) -> list[Row]:
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--sweep", action="store_true", help="run the sweeps first")
-    parser.add_argument("--seeds", type=int, default=1000)
+    parser.add_argument("--seeds", type=int, default=1000, help="sweep seeds below this")
+    parser.add_argument("--first", type=int, default=0, help="the first seed to sweep")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--scenarios", default=",".join(c.scenario for c in CASES),
                         help="which scenarios to sweep (comma-separated)")
     args = parser.parse_args(argv)
     if args.sweep:
-        sweep(args.seeds, args.jobs, args.scenarios.split(","))
+        sweep(args.seeds, args.jobs, args.scenarios.split(","), args.first)
     rows = load_rows(RESULTS)
     if not rows:
         print("no rows in bench/results/: run with --sweep first", file=sys.stderr)

@@ -13,6 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from btplan.acting.ahead import attached, later_false
+from btplan.acting.scope import lineage, scope_moved
 from btplan.bt import (
     FAILURE,
     SUCCESS,
@@ -133,15 +134,19 @@ class BlendedLoop:
         like: AchieverIndex | None = None,
         look_ahead: bool = False,
         banned: frozenset[Choice] = frozenset(),
+        scope_moves: bool = False,
     ) -> None:
         """`like`: an index of the same task to share models with; `look_ahead`: also
         expand, in the same tick, the later preconditions that are false (btplan.acting.ahead);
-        `banned`: (condition, action) choices never used (btplan.planner.backjump)."""
+        `banned`: (condition, action) choices never used (btplan.planner.backjump);
+        `scope_moves`: skip a moved subtree while what it was moved for holds
+        (btplan.acting.scope)."""
         self.banned = banned
         self.culprits: list[Choice] = []
         """When planning stopped: the achiever choices to give up first (backjump.py)."""
         self.task = task
         self.look_ahead = look_ahead
+        self.scope_moves = scope_moves
         self._ahead: list[Node] = []
         self.world = world
         self.options = options or PlannerOptions()
@@ -472,6 +477,7 @@ class BlendedLoop:
             self._never_expand(guard_nodes(subtree, guarded))
             if self.options.protect_goals:
                 self._protect(subtree)
+            before = lineage(subtree) if self.scope_moves else []
             try:
                 resolution = resolve_conflicts(
                     self.tree, subtree, self._judge(), self.options.reorder_goals,
@@ -483,6 +489,8 @@ class BlendedLoop:
                     self.culprits = conflict_choices(subtree, self._judge())
                 _unexpand(self.tree, subtree, node)
                 continue
+            if resolution.moves and before:
+                self._never_expand(scope_moved(before, self.task))
             return self._record(literal, batch, len(resolution.conflicts), resolution.moves)
         assert first is not None
         searched = self._search(node)

@@ -177,6 +177,7 @@ def run_task(
     stop: Callable[[], bool] | None = None,
     look_ahead: bool = False,
     models: AchieverIndex | None = None,
+    scope_moves: bool = False,
 ) -> RunOutcome:
     """Plan and act at once (Algorithm 1) in `world`, with `agents` acting before each tick.
 
@@ -188,7 +189,7 @@ def run_task(
     if world is None:
         world = SymbolicWorld(task, seed=seed, failure_probability=failure_probability)
     loop = BlendedLoop(task, world, options or ACTING_OPTIONS, like=models,
-                       look_ahead=look_ahead)
+                       look_ahead=look_ahead, scope_moves=scope_moves)
     observer = _Observer(world, agents, loop.tree, view, rate, stop)
     interrupted = False
     halted_on_stop: tuple[str, ...] = ()
@@ -229,6 +230,7 @@ def run(
     world_name: str = "this world",
     look_ahead: bool = False,
     models: AchieverIndex | None = None,
+    scope_moves: bool = False,
 ) -> RunOutcome:
     """Run `task` in a world with disturbances: the library form of `btplan run`.
 
@@ -239,7 +241,9 @@ def run(
     (`PlannerOptions.paper()` for the published algorithms); `stop` is asked before
     each tick whether to end the run there (see `run_task`); `world_name` is how
     messages call the world ("the PyBullet world"); `look_ahead` expands the later
-    false preconditions of an action with the first (btplan.acting.ahead); `models`
+    false preconditions of an action with the first (btplan.acting.ahead); `scope_moves`
+    skips a subtree moved out of an achiever while that achiever's condition holds
+    (btplan.acting.scope); `models`
     are the task's models built beforehand (`task_models`), so that their cost can
     be told apart from the expansions'.
     """
@@ -250,4 +254,5 @@ def run(
     everyone = [*agents_from_specs(specs, seed), *agents]
     return run_task(task, world=world, agents=everyone, seed=seed, max_ticks=max_ticks,
                     view=view, rate=rate, failure_probability=failure_probability,
-                    options=options, stop=stop, look_ahead=look_ahead, models=models)
+                    options=options, stop=stop, look_ahead=look_ahead, models=models,
+                    scope_moves=scope_moves)

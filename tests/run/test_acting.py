@@ -63,3 +63,36 @@ def test_bad_specs_raise_located_input_errors() -> None:
     with pytest.raises(InputError) as caught:
         run(OBSTACLE, disturb=["set:blocks(sphere)@2"])
     assert "blocks takes 2 arguments, not 1" in str(caught.value)
+
+
+class BlockBehind:
+    """Blocks the path to the goal once, when the robot stands there with the cube."""
+
+    name = "block-behind"
+
+    def __init__(self) -> None:
+        self.fired = False
+
+    def act(self, world: Any, tick: int) -> list[Disturbance]:
+        facts = world.facts()
+        if self.fired or not {Atom("holding", ("cube",)), Atom("near", ("goal",))} <= facts:
+            return []
+        self.fired = True
+        world.set_fact(Atom("blocks", ("sphere", "tau_goal")))
+        return [Disturbance(tick, self.name, "blocked tau_goal behind the robot", "set")]
+
+
+@pytest.mark.parametrize("scope", [True, False])
+def test_a_path_blocked_behind_the_robot_is_cleared_only_when_scoped(scope: bool) -> None:
+    # The early block makes the tree clear the path, a subtree that conflict resolution
+    # moves before picking the cube; the second block comes once the robot is at the goal.
+    result = run(OBSTACLE, agents=[BlockBehind()], disturb=BLOCK_EARLY, look_ahead=True,
+                 scope_moves=scope)
+    assert result.reached
+    total = result.summary()
+    assert total.disturbances[-1].agent == "block-behind"
+    after = total.started[total.started.index("Place(cube, goal)"):]
+    if scope:  # the path is no longer needed: the cube is placed at once
+        assert after == ["Place(cube, goal)"] and not total.halted
+    else:  # the moved subtree is ticked first and clears the path again
+        assert "Place(cube, goal)" in total.halted and "Drop(cube)" in after
