@@ -51,6 +51,7 @@ from btplan.planner.expand import (
     goal_check,
     guard_nodes,
     non_circular,
+    not_through_pursued,
     pursued,
 )
 from btplan.planner.lookahead import closest_first, keep_reachable, needed_later
@@ -363,7 +364,10 @@ class BlendedLoop:
             present = {leaf.key for leaf in achiever_leaves(fallback)}
             limit = len(present) + self.options.max_alternatives
             found = self.index.achievers(literal, state, self.world.refine, limit)
-            fresh = [a for a in non_circular(found, pursued(node)) if a.key not in present]
+            goals = pursued(node)
+            fresh = [a for a in non_circular(found, goals) if a.key not in present]
+            fresh = not_through_pursued(fresh, goals, self.index.relaxed, state,
+                                        self.task.object_types)
             if fresh and len(self.expansions) >= self.options.max_expansions:
                 raise BudgetExceededError(
                     f"the expansion budget ({self.options.max_expansions}) ran out "
