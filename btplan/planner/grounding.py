@@ -80,8 +80,8 @@ def bindings(
     (the atoms reachable from the state, ignoring deletes), a positive precondition on
     a changing predicate must be among them: such a binding could never run, and
     enumerating it would use up `limit` before the bindings that can (a sandwich made
-    of bread already eaten). Then, too, the values that make such a precondition hold
-    now are tried first: with more bindings than `limit`, the one that can run at once
+    of bread already eaten). Then, too, the values with which more of these
+    preconditions hold now are tried first: with more bindings than `limit`, the one that can run at once
     (unstack(b9, b19) with b9 on b19, where b9 sorts after b64) must not be cut.
     """
     table = objects or Objects(task)
@@ -182,27 +182,30 @@ def _now_first(
     state: frozenset[Atom],
     values: list[str],
 ) -> list[str]:
-    """`values`, those with which a precondition holds in `state` first (stable order).
+    """`values`, those with which more preconditions hold in `state` first (stable).
 
     Only preconditions whose other parameters are already bound are read, from the
     state's atoms of their predicate, as `_supported` reads its checks.
     """
-    now: set[str] = set()
+    holding: dict[str, int] = {}
     for literal in hopes:
         if name not in literal.args:
             continue
         args = [binding.get(a, a if a not in types else None) for a in literal.args]
         if any(want is None for a, want in zip(literal.args, args) if a != name):
             continue
+        now: set[str] = set()
         for atom in table.atoms(state, literal.predicate):
             if len(atom.args) == len(args) and all(
                     a == name or want == got for a, want, got in zip(literal.args, args, atom.args)):
                 seen = {got for a, got in zip(literal.args, atom.args) if a == name}
                 if len(seen) == 1:
                     now |= seen
-    if not now:
+        for value in now:
+            holding[value] = holding.get(value, 0) + 1
+    if not holding:
         return values
-    return [v for v in values if v in now] + [v for v in values if v not in now]
+    return sorted(values, key=lambda v: -holding.get(v, 0))
 
 
 def _holds(literal: Literal, binding: Mapping[str, str], facts: Container[Atom]) -> bool:

@@ -134,11 +134,12 @@ class RelaxedModel:
     def reachable_avoiding(self, state: frozenset[Atom], avoided: set[Atom],
                            targets: Iterable[Atom]) -> set[Atom]:
         """The targets reachable from `state`, ignoring deletes, with no action that needs
-        an avoided atom (and the avoided atoms never made true).
+        an avoided atom (and the avoided atoms false, even where `state` has them).
 
         A target only reachable through a state where an avoided atom holds needs that
         atom first: an achiever of g that needs it cannot help a fallback pursuing g.
         """
+        targets = [t for t in targets if t not in avoided]
         found = {t for t in targets if t in state}
         ids = self._ids
         wanted = {ids[t] for t in targets if t not in state and t in ids}
