@@ -64,7 +64,9 @@ STUCK_EXPANSIONS = 8
 
 ROUND_EXPANSIONS = 40
 """Expansions of one condition after which the attempt stops: it goes round, and the
-next strategy (or the last-resort search) is better spent time than the budget."""
+next strategy (or the last-resort search) is better spent time than the budget. A task
+with more objects allows one expansion per object: gripper's robot must be in a room
+again for every ball, blocksworld's hand empty again for every block moved."""
 
 BACKTRACKS = 2
 """Further batches of achievers tried when the first has no conflict-free place."""
@@ -165,6 +167,7 @@ class BlendedLoop:
         """A time.perf_counter() value the last-resort search must not run past."""
         self._rescuer: Rescuer | None = None
         self._tally: Counter[GroundLiteral] = Counter()
+        self._round_limit = max(ROUND_EXPANSIONS, len(task.object_types))
         check = goal_check(self.tree)
         if check is not None:  # the final re-check of the goals is never expanded
             self._expanded.update(check.children)
@@ -240,7 +243,7 @@ class BlendedLoop:
                 searched = self._search(node)  # expanded again and again: going round
                 if searched is not None:
                     return searched
-                if self._tally[literal] >= ROUND_EXPANSIONS and self.options.refine_more:
+                if self._tally[literal] >= self._round_limit and self.options.refine_more:
                     raise NoProgressError(
                         f"{literal} was expanded {self._tally[literal]} times: the tree goes "
                         f"round (expanded most often: {self.most_expanded()})")
