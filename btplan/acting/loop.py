@@ -526,7 +526,10 @@ class BlendedLoop:
 
     def _judge(self) -> Judge:
         mutexes = self.index.mutexes if self.options.mutexes else None
-        return Judge(self.grounding, mutexes, frozenset(self._guards_seen))
+        if not self.options.reorder_goals:  # the paper: no circularity check on places
+            return Judge(self.grounding, mutexes, frozenset(self._guards_seen))
+        return Judge(self.grounding, mutexes, frozenset(self._guards_seen),
+                     self.index.relaxed, self.world.facts())
 
     def _stall(self) -> None:
         """The tree failed with nothing to expand (an action failed): retry, a few times."""
