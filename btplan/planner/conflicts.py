@@ -229,7 +229,31 @@ def placement_conflicts(moved: Node, judge: Judge) -> list[Conflict]:
     for sibling in later:
         found += judge.threatens(achiever_leaves(sibling), kept, "later work undoes it")
         found += judge.blocks(kept, sibling, own, "later work needs otherwise")
+        found += _blocks_unexpanded(kept, sibling, judge)
     return found
+
+
+def _blocks_unexpanded(kept: list[GroundLiteral], sibling: Node, judge: Judge) -> list[Conflict]:
+    """Rule (d) for a later condition not expanded yet: every achiever of it needs
+    something `kept` excludes (clear(b37) first among the goals, on(b37, b87) later:
+    stacking b37 needs holding b37). Only with the relaxed model and mutexes."""
+    literal = literal_of(sibling)
+    mutexes = judge.mutexes
+    if (literal is None or not literal.positive or judge.relaxed is None or judge.state is None
+            or mutexes is None or literal.atom in judge.state):
+        return []
+    producers = judge.relaxed.producers(literal.atom)
+    if not producers:
+        return []
+    found: list[Conflict] = []
+    for action in producers:
+        clash = [Conflict(str(hold), f"excludes {need}", "later work needs otherwise")
+                 for need in action.preconditions if mutexes.knows(need.atom)
+                 for hold in kept if mutexes.exclusive(hold, need)]
+        if not clash:
+            return []
+        found += clash[:1]
+    return found[:1]
 
 
 def alternative_conflicts(
