@@ -2,7 +2,8 @@
 
 On three generated blocks (b3 on b1, b2 on the table), the subtree for on(b1, b2)
 placed at the front of the sequence that unstacks b3 from b1 runs only while
-clear(b1) is false, and every way to hold b1 needs clear(b1).
+clear(b1) is false, and every way to hold b1 needs clear(b1). Likewise clear(b1)
+moved before the goal on(b1, b2), not expanded yet, conflicts with what stacking needs.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from btplan.lang import load
 from btplan.lang.generators import generate
 from btplan.model import Atom, GroundLiteral, Task
 from btplan.planner import AchieverIndex
-from btplan.planner.conflicts import Judge, circular_place
+from btplan.planner.conflicts import Judge, circular_place, placement_conflicts
 from btplan.planner.expand import achiever_sequence, atomic_bt, condition_node
 from btplan.worlds.symbolic import SymbolicWorld
 
@@ -61,3 +62,19 @@ def test_a_subtree_that_can_succeed_there_is_not_circular(tmp_path: Path) -> Non
     assert not circular_place(free, judge)
     # Putting b2 down does: stacking b1 on b2 needs clear(b2) itself.
     assert circular_place(placed(task, index, Atom("clear", ("b2",)), "put_down(b2)"), judge)
+
+
+def test_a_later_goal_not_expanded_yet_shows_what_its_achievers_need(tmp_path: Path) -> None:
+    task = three_blocks(tmp_path)
+    index = AchieverIndex(task)
+    state = SymbolicWorld(task).facts()
+    clear = GroundLiteral(Atom("clear", ("b1",)), True)
+    moved = atomic_bt(condition_node(clear, task), index.relaxed.producers(clear.atom)[:1], task)
+    goal = condition_node(GroundLiteral(Atom("on", ("b1", "b2")), True), task)
+    SequenceNode([moved, goal])
+    # clear(b1) excludes holding(b1), which stacking b1 on b2, its only achiever, needs.
+    found = placement_conflicts(moved, Judge({}, index.mutexes, relaxed=index.relaxed,
+                                             state=state))
+    assert [c.condition for c in found] == ["excludes holding(b1)"]
+    # The paper's judge sees only the goal itself, which clear(b1) does not exclude.
+    assert placement_conflicts(moved, Judge({}, index.mutexes)) == []
