@@ -53,6 +53,7 @@ from btplan.planner.expand import (
     goal_check,
     guard_nodes,
     non_circular,
+    not_through_pursued,
     pursued,
 )
 from btplan.planner.lookahead import closest_first, keep_reachable, needed_later
@@ -65,7 +66,9 @@ STUCK_EXPANSIONS = 8
 
 ROUND_EXPANSIONS = 40
 """Expansions of one condition after which the attempt stops: it goes round, and the
-next strategy (or the last-resort search) is better spent time than the budget."""
+next strategy (or the last-resort search) is better spent time than the budget. A task
+with more objects allows one expansion per object: gripper's robot must be in a room
+again for every ball, blocksworld's hand empty again for every block moved."""
 
 BACKTRACKS = 2
 """Further batches of achievers tried when the first has no conflict-free place."""
@@ -175,6 +178,7 @@ class BlendedLoop:
         """A time.perf_counter() value the last-resort search must not run past."""
         self._rescuer: Rescuer | None = None
         self._tally: Counter[GroundLiteral] = Counter()
+        self._round_limit = max(ROUND_EXPANSIONS, len(task.object_types))
         check = goal_check(self.tree)
         if check is not None:  # the final re-check of the goals is never expanded
             self._expanded.update(check.children)
@@ -253,7 +257,7 @@ class BlendedLoop:
                 searched = self._search(node)  # expanded again and again: going round
                 if searched is not None:
                     return searched
-                if self._tally[literal] >= ROUND_EXPANSIONS and self.options.refine_more:
+                if self._tally[literal] >= self._round_limit and self.options.refine_more:
                     self.culprits = enclosing_choices(node)
                     raise NoProgressError(
                         f"{literal} was expanded {self._tally[literal]} times: the tree goes "
@@ -387,8 +391,11 @@ class BlendedLoop:
             present = {leaf.key for leaf in achiever_leaves(fallback)}
             limit = len(present) + self.options.max_alternatives
             found = self.index.achievers(literal, state, self.world.refine, limit)
-            fresh = [a for a in self._allowed(non_circular(found, pursued(node)), literal)
+            goals = pursued(node)
+            fresh = [a for a in self._allowed(non_circular(found, goals), literal)
                      if a.key not in present]
+            fresh = not_through_pursued(fresh, goals, self.index.relaxed, state,
+                                        self.task.object_types)
             if fresh and len(self.expansions) >= self.options.max_expansions:
                 raise BudgetExceededError(
                     f"the expansion budget ({self.options.max_expansions}) ran out "
@@ -558,7 +565,10 @@ class BlendedLoop:
 
     def _judge(self) -> Judge:
         mutexes = self.index.mutexes if self.options.mutexes else None
-        return Judge(self.grounding, mutexes, frozenset(self._guards_seen))
+        if not self.options.reorder_goals:  # the paper: no circularity check on places
+            return Judge(self.grounding, mutexes, frozenset(self._guards_seen))
+        return Judge(self.grounding, mutexes, frozenset(self._guards_seen),
+                     self.index.relaxed, self.world.facts())
 
     def _stall(self) -> None:
         """The tree failed with nothing to expand (an action failed): retry, a few times."""

@@ -1,19 +1,46 @@
-"""The `btplan` command line: one module per command, all on one typer app."""
+"""The `btplan` command line: one module per command, all on one typer app.
+
+The app (and typer with it) is built on first use of `btplan.cli.app` (PEP 562), so
+that the console script can run a plain `btplan plan ...` without it (`cli/lean.py`).
+"""
+
+from __future__ import annotations
 
 import sys
+from typing import TYPE_CHECKING, Any
 
-from btplan.cli import commands as _commands  # noqa: F401  (registers the commands)
-from btplan.cli.app import EXIT_BUG, app, report_bug
+if TYPE_CHECKING:
+    from typer import Typer
+
+    app: Typer
 
 
 def main() -> None:
     """The console script; a bug outside any command still ends in one line and exit 3."""
+    from btplan.cli.lean import main_fast
+
+    main_fast()  # exits when it could run the command itself
+    from btplan.cli.edge import EXIT_BUG, report_bug
+
     only_the_command_asked_for(sys.argv[1:2])
     try:
-        app(prog_name="btplan")
+        _the_app()(prog_name="btplan")
     except Exception as error:  # commands report their own; this is the last net
         report_bug(error)
         sys.exit(EXIT_BUG)
+
+
+def _the_app() -> Typer:
+    from btplan.cli import commands as _commands  # noqa: F401  (registers the commands)
+    from btplan.cli.typer_app import app as built
+
+    return built
+
+
+def __getattr__(name: str) -> Any:
+    if name == "app":
+        return _the_app()
+    raise AttributeError(f"module 'btplan.cli' has no attribute {name!r}")
 
 
 def only_the_command_asked_for(first: list[str]) -> None:
@@ -27,6 +54,7 @@ def only_the_command_asked_for(first: list[str]) -> None:
     """
     if not first:
         return
+    app = _the_app()
     name = first[0]
     commands = [c for c in app.registered_commands
                 if (c.name or getattr(c.callback, "__name__", "").replace("_", "-")) == name]
@@ -35,4 +63,4 @@ def only_the_command_asked_for(first: list[str]) -> None:
         app.registered_commands, app.registered_groups = commands, groups
 
 
-__all__ = ["app", "main"]
+__all__ = ["app", "main", "only_the_command_asked_for"]

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from btplan.cli.app import EXIT_BAD_INPUT, app, format_input_error, guarded, stderr
+from btplan.cli.typer_app import EXIT_BAD_INPUT, app, format_input_error, guarded, stderr
 from btplan.cli.console import LazyConsole, escape
 
 if TYPE_CHECKING:

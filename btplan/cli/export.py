@@ -8,7 +8,7 @@ from typing import Annotated
 
 import typer
 
-from btplan.cli.app import app, guarded, stderr
+from btplan.cli.typer_app import app, guarded, stderr
 from btplan.cli.console import escape
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Span

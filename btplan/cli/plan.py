@@ -2,29 +2,17 @@
 
 from __future__ import annotations
 
-import sys
-import time
-from dataclasses import replace
+import time  # noqa: F401  (tests reach the clock of the progress line through this module)
 from enum import Enum
-from pathlib import Path
-from typing import TYPE_CHECKING, Annotated
+from typing import Annotated
 
 import typer
 
-from btplan.cli.app import app, guarded, stderr
-from btplan.cli.console import escape
-from btplan.cli.interrupts import Interrupts
-from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
-from btplan.errors import InputError, Interrupted
-
-if TYPE_CHECKING:
-    from btplan.acting.loop import Expansion
-    from btplan.acting.offline import PlanResult
-    from btplan.bt import BehaviorTree
-
-
-DEFAULT_TIMEOUT = 300.0
-"""Seconds `btplan plan` plans before it gives up, unless told otherwise."""
+from btplan.cli.outputs import STDIO
+from btplan.cli.planning import (
+    DEFAULT_TIMEOUT, Progress, default_format, plan_and_write, plan_text, summary,
+)
+from btplan.cli.typer_app import app, guarded
 
 
 class Format(str, Enum):
@@ -96,130 +84,11 @@ def plan_command(
     The tree goes to standard output (or -o FILE), the summary to standard error.
     Ctrl-C stops at the next tick: nothing is written, the summary says how far it got.
     """
-    # Imported here, not at the top: every command's module is imported when btplan
-    # starts, and the planner, the trees and their formats only serve this one.
-    from btplan.acting.offline import load, plan
-    from btplan.bt.formats import dump
-    from btplan.planner import PlannerOptions
-    from btplan.shipped import resolve
-
-    out = out_alias if out_alias is not None else out
-    limits = [("--max-expansions", max_expansions), ("--max-ticks", max_ticks)]
-    if max_alternatives is not None:
-        limits.append(("--max-alternatives", max_alternatives))
-    for name, value in limits:
-        if value < 1:
-            raise InputError(f"{name} must be at least 1, got {value}")
-    if timeout < 0:
-        raise InputError(f"--timeout must be 0 (no limit) or positive, got {timeout:g}")
-    check_outputs(Output("-o/--output", out), Output("--plan-out", plan_out),
-                  Output("--trace-expansions", trace_expansions, folder=True))
-    chosen = fmt.value if fmt is not None else default_format(out)
-    snapshots: list[tuple[str, str]] = []
-
-    progress = Progress(enabled=not quiet)
-
-    def trace(tree: BehaviorTree, expansion: Expansion) -> None:
-        if trace_expansions is not None:
-            snapshots.append((dump(tree, "dot"), dump(tree, "json")))
-        progress.update(tree)
-
-    options = PlannerOptions.paper() if paper else None
-    if max_alternatives is not None:
-        options = replace(options or PlannerOptions(), max_alternatives=max_alternatives)
-    if no_search and options is not None:
-        options = replace(options, search_stuck=False)
-    with Interrupts() as interrupted:
-        try:
-            task = load(resolve(domain), *([problem] if problem is not None else []))
-            result = plan(task, seed=seed, max_expansions=max_expansions, max_ticks=max_ticks,
-                          timeout=timeout or None, options=options, on_expansion=trace,
-                          stop=interrupted, last_resort=not no_search)
-        except Interrupted as error:
-            stderr.print(f"[bold yellow]interrupted[/]: {escape(error.progress)}; "
-                         "nothing written")
-            raise typer.Exit(interrupted.exit_code) from None
-        finally:
-            progress.close()
-    if trace_expansions is not None:
-        folder = Path(trace_expansions)
-        folder.mkdir(parents=True, exist_ok=True)
-        # Only the attempt that succeeded: plan() may have started over with wider options.
-        kept = snapshots[len(snapshots) - len(result.expansions):] if result.expansions else []
-        for number, (dot, saved) in enumerate(kept, start=1):
-            stem = folder / f"expansion_{number:03d}"
-            write_atomic(f"{stem}.dot", dot)
-            write_atomic(f"{stem}.json", saved)
-    text = dump(result.tree, chosen)
-    write_atomic(out, text if text.endswith("\n") else text + "\n")
-    if plan_out is not None:
-        write_atomic(plan_out, plan_text(result, task.domain.has_costs))
-    if not quiet:
-        stderr.print(summary(result))
+    plan_and_write(domain, problem, fmt.value if fmt is not None else None,
+                   out_alias if out_alias is not None else out, plan_out, trace_expansions,
+                   seed, max_expansions, max_ticks, max_alternatives, paper, no_search,
+                   timeout, quiet)
 
 
-class Progress:
-    """One stderr line a second once planning has run for a second: expansions, tree
-    size, conditions open. On a terminal the line is rewritten in place."""
-
-    def __init__(self, enabled: bool = True) -> None:
-        self.enabled = enabled
-        self.started = time.perf_counter()
-        self.shown = self.started
-        self.expansions = 0
-        self.terminal = sys.stderr.isatty()
-        self.dirty = False
-
-    def update(self, tree: BehaviorTree) -> None:
-        self.expansions += 1
-        now = time.perf_counter()
-        if not self.enabled or now - self.shown < 1.0:
-            return
-        self.shown = now
-        from btplan.bt import FAILURE, Condition
-
-        nodes = tree.nodes()
-        open_ = sum(1 for n in nodes if n.status is FAILURE and isinstance(n, Condition))
-        line = (f"planning: {self.expansions} expansions, tree of {len(nodes)} nodes, "
-                f"{open_} conditions failing, {now - self.started:.0f} s")
-        if self.terminal:
-            sys.stderr.write("\r\x1b[2K" + line)
-            self.dirty = True
-        else:
-            sys.stderr.write(line + "\n")
-        sys.stderr.flush()
-
-    def close(self) -> None:
-        if self.dirty:
-            sys.stderr.write("\r\x1b[2K")
-            sys.stderr.flush()
-
-
-def default_format(out: str) -> str:
-    """ascii on a terminal, json in a pipe; for a file, what its extension says (json)."""
-    if out == STDIO:
-        return "ascii" if sys.stdout.isatty() else "json"
-    suffix = Path(out).suffix.lower().lstrip(".")
-    return {"xml": "xml", "dot": "dot", "gv": "dot", "txt": "ascii"}.get(suffix, "json")
-
-
-def plan_text(result: PlanResult, general: bool) -> str:
-    """The executed actions in IPC plan format, ending with the cost line IPC tools write."""
-    kind = "general cost" if general else "unit cost"
-    steps = "".join(a.ipc() + "\n" for a in result.executed)
-    return steps + f"; cost = {result.stats.cost:g} ({kind})\n"
-
-
-def summary(result: PlanResult) -> str:
-    s = result.stats
-    return (
-        f"[green]planned[/]: {s.expansions} expansions, {s.conflicts_resolved} conflicts "
-        f"resolved ({s.moves} moves), tree of {s.tree_size} nodes, {s.actions_executed} actions "
-        f"executed (cost {s.cost:g}), {s.seconds:.3f} s"
-        + ("; last resort: the whole goal planned by search from the initial state"
-           if s.whole_goal else
-           f"; last resort: {s.searches} stuck conditions planned by search"
-           if s.searches else "")
-        + (f"; {s.retries} attempts started over without a choice that failed"
-           if s.retries else "")
-    )
+__all__ = ["DEFAULT_TIMEOUT", "Format", "Progress", "default_format", "plan_command",
+           "plan_text", "summary"]

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Annotated, Any, Self
 
 import typer
 
-from btplan.cli.app import EXIT_FAILED, app, guarded, stderr
+from btplan.cli.typer_app import EXIT_FAILED, app, guarded, stderr
 from btplan.cli.console import escape
 from btplan.cli.interrupts import Interrupts
 from btplan.cli.outputs import STDIO, LineStream, Output, check_outputs, write_atomic

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 import typer
 from typer.core import TyperCommand
 
-from btplan.cli.app import app, guarded, stderr
+from btplan.cli.typer_app import app, guarded, stderr
 from btplan.cli.console import escape
 from btplan.cli.outputs import Output, check_outputs
 from btplan.cli.run import Sim

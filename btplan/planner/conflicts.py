@@ -25,8 +25,9 @@ from dataclasses import dataclass
 
 from btplan.bt import Action, Fallback, LeafKey, Node
 from btplan.bt import Sequence as SequenceNode
-from btplan.model import GroundAction, GroundLiteral
+from btplan.model import Atom, GroundAction, GroundLiteral
 from btplan.planner.expand import literal_of
+from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
 
 Grounding = Mapping[LeafKey, GroundAction]
@@ -58,6 +59,9 @@ class Judge:
     guards: frozenset[Node] = frozenset()
     """Guard conditions (achievers.guards): they say what an alternative is for, and
     undoing them is its purpose, so they are never an earlier condition to protect."""
+    relaxed: RelaxedModel | None = None
+    state: frozenset[Atom] | None = None
+    """With both, a place is also refused when it is circular (`circular_place`)."""
 
     def threatens(
         self, doers: list[Action], conditions: list[GroundLiteral], rule: str
@@ -225,7 +229,31 @@ def placement_conflicts(moved: Node, judge: Judge) -> list[Conflict]:
     for sibling in later:
         found += judge.threatens(achiever_leaves(sibling), kept, "later work undoes it")
         found += judge.blocks(kept, sibling, own, "later work needs otherwise")
+        found += _blocks_unexpanded(kept, sibling, judge)
     return found
+
+
+def _blocks_unexpanded(kept: list[GroundLiteral], sibling: Node, judge: Judge) -> list[Conflict]:
+    """Rule (d) for a later condition not expanded yet: every achiever of it needs
+    something `kept` excludes (clear(b37) first among the goals, on(b37, b87) later:
+    stacking b37 needs holding b37). Only with the relaxed model and mutexes."""
+    literal = literal_of(sibling)
+    mutexes = judge.mutexes
+    if (literal is None or not literal.positive or judge.relaxed is None or judge.state is None
+            or mutexes is None or literal.atom in judge.state):
+        return []
+    producers = judge.relaxed.producers(literal.atom)
+    if not producers:
+        return []
+    found: list[Conflict] = []
+    for action in producers:
+        clash = [Conflict(str(hold), f"excludes {need}", "later work needs otherwise")
+                 for need in action.preconditions if mutexes.knows(need.atom)
+                 for hold in kept if mutexes.exclusive(hold, need)]
+        if not clash:
+            return []
+        found += clash[:1]
+    return found[:1]
 
 
 def alternative_conflicts(
@@ -244,3 +272,46 @@ def alternative_conflicts(
             if judge.threatens(own, held, ""):
                 return True
     return False
+
+
+def circular_place(moved: Node, judge: Judge) -> bool:
+    """Whether `moved`, where it stands, needs what an enclosing Fallback pursues.
+
+    Rule (e), with the relaxed model and state the judge carries (none: never).
+    Placed at the front of the sequence that unstacks b18 from b37 to clear b37, the
+    subtree for on(b37, b87) runs only while clear(b37) is false, yet stacking b37
+    needs holding b37, and every way to hold b37 needs clear(b37): it never succeeds.
+    Looked at two achiever steps deep, over all grounded actions, not from the state
+    judged: after a move the run starts over, and the branch runs in another state.
+    """
+    if judge.relaxed is None or judge.state is None:
+        return False
+    pursued: set[Atom] = set()
+    node = moved.parent
+    while node is not None:
+        if isinstance(node, Fallback) and node.children:
+            first = literal_of(node.children[0])
+            if first is not None and first.positive:  # false whenever `moved` runs
+                pursued.add(first.atom)
+        node = node.parent
+    if not pursued:
+        return False
+    return any(g.positive and g.atom not in pursued
+               and _needs(g.atom, pursued, judge.relaxed, judge.state, 2)
+               for g in guarantees(moved))
+
+
+def _needs(atom: Atom, pursued: set[Atom], relaxed: RelaxedModel, state: frozenset[Atom],
+           depth: int) -> bool:
+    """Whether every achiever of `atom` (false in `state`) needs a pursued atom, directly
+    or through a precondition all of whose achievers do (up to `depth` steps)."""
+    if atom in state:
+        return False
+    producers = relaxed.producers(atom)
+    if not producers:
+        return False  # nothing known about it: not judged
+    return all(
+        any(p.positive and (p.atom in pursued
+                            or (depth > 1 and _needs(p.atom, pursued, relaxed, state, depth - 1)))
+            for p in action.preconditions)
+        for action in producers)

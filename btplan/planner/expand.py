@@ -8,12 +8,16 @@ is an Inverter over the Condition leaf, and that Inverter is what gets expanded.
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Collection, Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING
 
 from btplan.bt import FAILURE, Action, BehaviorTree, Condition, Fallback, Node
 from btplan.bt import Sequence as SequenceNode
 from btplan.bt.decorators import Inverter
 from btplan.model import Atom, GroundAction, GroundLiteral, Task
+
+if TYPE_CHECKING:
+    from btplan.planner.heuristic import RelaxedModel
 
 
 def condition_node(literal: GroundLiteral, task: Task) -> Node:
@@ -169,6 +173,29 @@ def pursued(condition: Node) -> set[GroundLiteral]:
 def non_circular(achievers: Sequence[GroundAction], goals: set[GroundLiteral]) -> list[GroundAction]:
     """Achievers that need none of the conditions already being pursued above."""
     return [a for a in achievers if not any(p in goals for p in a.preconditions)]
+
+
+def not_through_pursued(
+    achievers: Sequence[GroundAction], goals: set[GroundLiteral], relaxed: RelaxedModel,
+    state: frozenset[Atom], known: Collection[str],
+) -> list[GroundAction]:
+    """Achievers whose preconditions can be reached without first making a pursued
+    condition true (ignoring deletes).
+
+    `non_circular` looks one step deep; this looks all the way. Holding b (pursued) by
+    unstack(b, c) needs on(b, c), and with b on the table on(b, c) needs holding b: the
+    achiever only runs once what it is for holds. Preconditions on values the relaxed
+    model does not know (refined by a backend) are not judged.
+    """
+    avoided = {g.atom for g in goals if g.positive and g.atom not in state}
+    if not avoided or not achievers:
+        return list(achievers)
+    needed = {p.atom for a in achievers for p in a.preconditions
+              if p.positive and all(arg in known for arg in p.atom.args)}
+    reached = relaxed.reachable_avoiding(state, avoided, needed)
+    return [a for a in achievers
+            if all(p.atom in reached for p in a.preconditions
+                   if p.positive and p.atom in needed)]
 
 
 def is_condition(node: Node) -> bool:

@@ -80,7 +80,9 @@ def bindings(
     (the atoms reachable from the state, ignoring deletes), a positive precondition on
     a changing predicate must be among them: such a binding could never run, and
     enumerating it would use up `limit` before the bindings that can (a sandwich made
-    of bread already eaten).
+    of bread already eaten). Then, too, the values with which more of these
+    preconditions hold now are tried first: with more bindings than `limit`, the one that can run at once
+    (unstack(b9, b19) with b9 on b19, where b9 sorts after b64) must not be cut.
     """
     table = objects or Objects(task)
     refined = {p.name for p in template.parameters if p.refined}
@@ -112,7 +114,8 @@ def bindings(
             return refine(template, binding, parameter)
         if parameter.refined:
             return list(table.of(parameter.type)) or [PLACEHOLDER]
-        return _supported(table, positive, binding, parameter.name, types, state)
+        values = _supported(table, positive, binding, parameter.name, types, state)
+        return _now_first(table, hopes, binding, parameter.name, types, state, values)
 
     def extend(binding: dict[str, str], depth: int) -> Iterator[dict[str, str]]:
         nonlocal count
@@ -168,6 +171,41 @@ def _supported(
                     allowed |= seen
         values = tuple(v for v in values if v in allowed)
     return list(values)
+
+
+def _now_first(
+    table: Objects,
+    hopes: tuple[Literal, ...],
+    binding: Mapping[str, str],
+    name: str,
+    types: Mapping[str, str],
+    state: frozenset[Atom],
+    values: list[str],
+) -> list[str]:
+    """`values`, those with which more preconditions hold in `state` first (stable).
+
+    Only preconditions whose other parameters are already bound are read, from the
+    state's atoms of their predicate, as `_supported` reads its checks.
+    """
+    holding: dict[str, int] = {}
+    for literal in hopes:
+        if name not in literal.args:
+            continue
+        args = [binding.get(a, a if a not in types else None) for a in literal.args]
+        if any(want is None for a, want in zip(literal.args, args) if a != name):
+            continue
+        now: set[str] = set()
+        for atom in table.atoms(state, literal.predicate):
+            if len(atom.args) == len(args) and all(
+                    a == name or want == got for a, want, got in zip(literal.args, args, atom.args)):
+                seen = {got for a, got in zip(literal.args, atom.args) if a == name}
+                if len(seen) == 1:
+                    now |= seen
+        for value in now:
+            holding[value] = holding.get(value, 0) + 1
+    if not holding:
+        return values
+    return sorted(values, key=lambda v: -holding.get(v, 0))
 
 
 def _holds(literal: Literal, binding: Mapping[str, str], facts: Container[Atom]) -> bool:

@@ -13,7 +13,6 @@ preconditions cannot be reached at all.
 from __future__ import annotations
 
 import heapq
-from collections import deque
 import math
 from collections.abc import Callable, Iterable
 
@@ -56,46 +55,72 @@ class RelaxedModel:
         self._free = [i for i, n in enumerate(self._waiting) if n == 0]
         self._producers: dict[Atom, list[GroundAction]] | None = None
         self._cache: dict[frozenset[Atom], dict[Atom, float]] = {}
+        self._encode()
+
+    def _encode(self) -> None:
+        """Atoms as integers and actions as lists of them, for `costs`: h_add runs once
+        per state the tree is ticked in, and hashing and comparing atoms was most of it."""
+        ids: dict[Atom, int] = {}
+        for action in self.actions:
+            for atom in (*(p.atom for p in action.preconditions if p.positive), *action.add):
+                ids.setdefault(atom, len(ids))
+        self._ids = ids
+        self._atoms = list(ids)
+        self._add_ids = [tuple(dict.fromkeys(ids[a] for a in act.add)) for act in self.actions]
+        self._action_cost = [float(act.cost) for act in self.actions]
+        self._by_pre_id: list[list[int]] = [[] for _ in ids]
+        for i, pre in enumerate(self._pre):
+            for atom in set(pre):
+                self._by_pre_id[ids[atom]].append(i)
 
     def costs(self, state: frozenset[Atom]) -> dict[Atom, float]:
         """h_add cost of every reachable atom from `state` (generalised Dijkstra)."""
         cached = self._cache.get(state)
         if cached is not None:
             return cached
-        cost: dict[Atom, float] = {a: 0.0 for a in state}
-        waiting = list(self._waiting)
-        queue: list[tuple[float, Atom]] = [(0.0, a) for a in sorted(state)]
+        ids, by_pre, adds, action_cost = self._ids, self._by_pre_id, self._add_ids, \
+            self._action_cost
+        inf = math.inf
+        cost = [inf] * len(ids)
+        queue: list[tuple[float, int]] = []
+        for atom in state:
+            at = ids.get(atom)
+            if at is not None:
+                cost[at] = 0.0
+                queue.append((0.0, at))
         heapq.heapify(queue)
-        done: set[Atom] = set()
-        fired = [False] * len(self.actions)
-        for i, n in enumerate(waiting):
-            if n == 0:
-                fired[i] = True
-                self._relax(i, 0.0, cost, queue)
+        waiting = list(self._waiting)
+        summed = [0.0] * len(waiting)  # the costs of an action's preconditions so far
+        push, pop = heapq.heappush, heapq.heappop
+        for i in self._free:
+            for at in adds[i]:
+                if action_cost[i] < cost[at]:
+                    cost[at] = action_cost[i]
+                    push(queue, (action_cost[i], at))
+        done = [False] * len(ids)
         while queue:
-            value, atom = heapq.heappop(queue)
-            if atom in done or value > cost.get(atom, math.inf):
+            value, at = pop(queue)
+            if done[at] or value > cost[at]:
                 continue
-            done.add(atom)
-            for i in self._by_pre.get(atom, ()):
+            done[at] = True
+            for i in by_pre[at]:
+                summed[i] += value
                 waiting[i] -= 1
-                if waiting[i] == 0 and not fired[i]:
-                    fired[i] = True
-                    total = sum(cost[p] for p in set(self._pre[i]))
-                    self._relax(i, total, cost, queue)
+                if waiting[i] == 0:
+                    total = summed[i] + action_cost[i]
+                    for added in adds[i]:
+                        if total < cost[added]:
+                            cost[added] = total
+                            push(queue, (total, added))
+        found = {a: 0.0 for a in state}
+        atoms = self._atoms
+        for at, value in enumerate(cost):
+            if value < inf:
+                found[atoms[at]] = value
         if len(self._cache) >= COST_CACHE:
             del self._cache[next(iter(self._cache))]
-        self._cache[state] = cost
-        return cost
-
-    def _relax(
-        self, i: int, pre_cost: float, cost: dict[Atom, float], queue: list[tuple[float, Atom]]
-    ) -> None:
-        value = pre_cost + self.actions[i].cost
-        for atom in self.actions[i].add:
-            if value < cost.get(atom, math.inf):
-                cost[atom] = value
-                heapq.heappush(queue, (value, atom))
+        self._cache[state] = found
+        return found
 
     def reachable(self, state: frozenset[Atom], targets: Iterable[Atom]) -> bool:
         """Whether every target can be reached from `state` ignoring deletes.
@@ -103,30 +128,59 @@ class RelaxedModel:
         Plain relaxed reachability, stopping as soon as the last target is reached:
         cheaper than `costs` when only yes or no matters.
         """
-        missing = {t for t in targets if t not in state}
-        if not missing:
-            return True
+        targets = list(targets)
+        return len(self.reachable_avoiding(state, set(), targets)) == len(set(targets))
+
+    def reachable_avoiding(self, state: frozenset[Atom], avoided: set[Atom],
+                           targets: Iterable[Atom]) -> set[Atom]:
+        """The targets reachable from `state`, ignoring deletes, with no action that needs
+        an avoided atom (and the avoided atoms false, even where `state` has them).
+
+        A target only reachable through a state where an avoided atom holds needs that
+        atom first: an achiever of g that needs it cannot help a fallback pursuing g.
+        """
+        targets = [t for t in targets if t not in avoided]
+        found = {t for t in targets if t in state}
+        ids = self._ids
+        wanted = {ids[t] for t in targets if t not in state and t in ids}
+        if not wanted:
+            return found
+        adds, by_pre, atoms = self._add_ids, self._by_pre_id, self._atoms
+        reached = [False] * len(ids)
+        blocked: set[int] = set()
+        for atom in avoided:
+            at = ids.get(atom)
+            if at is not None:
+                reached[at] = True  # never reached, never fires what needs it
+                blocked.update(self._by_pre.get(atom, ()))
+        frontier: list[int] = []  # breadth first: what is near the state comes first
+        for atom in state:
+            at = ids.get(atom)
+            if at is not None and not reached[at]:
+                reached[at] = True
+                frontier.append(at)
         waiting = list(self._waiting)
-        reached = set(state)
-        frontier = deque(state)
-        for i in self._free:
-            for atom in self.actions[i].add:
-                if atom not in reached:
-                    reached.add(atom)
-                    frontier.append(atom)
-        while frontier:
-            atom = frontier.popleft()
-            missing.discard(atom)
-            if not missing:
-                return True
-            for i in self._by_pre.get(atom, ()):
+        fired = [i for i in self._free if i not in blocked]
+        head = 0
+        while True:
+            for i in fired:
+                for at in adds[i]:
+                    if not reached[at]:
+                        reached[at] = True
+                        frontier.append(at)
+                        if at in wanted:
+                            wanted.discard(at)
+                            found.add(atoms[at])
+                            if not wanted:
+                                return found
+            if head == len(frontier):
+                return found
+            fired = []
+            for i in by_pre[frontier[head]]:
                 waiting[i] -= 1
-                if waiting[i] == 0:
-                    for added in self.actions[i].add:
-                        if added not in reached:
-                            reached.add(added)
-                            frontier.append(added)
-        return False
+                if waiting[i] == 0 and i not in blocked:
+                    fired.append(i)
+            head += 1
 
     def producers(self, atom: Atom) -> list[GroundAction]:
         """The grounded actions that add `atom`."""

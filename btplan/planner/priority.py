@@ -13,6 +13,10 @@ giving up (docs/planner.md says why and what it buys):
   3. the front of the achiever sequence of an earlier sibling X, for those enclosing
      atomic BTs and then for N: "make this true while achieving X", which, unlike a
      slot before X, is not re-checked once X holds.
+A place of step 3 is refused when it is circular (conflicts.circular_place): there the
+moved subtree runs only while the condition X pursues is false, and cannot succeed
+before it holds. The judge carries what that check needs only when goals may be
+reordered.
 """
 
 from __future__ import annotations
@@ -27,6 +31,7 @@ from btplan.planner.conflicts import (
     Conflict,
     Judge,
     alternative_conflicts,
+    circular_place,
     find_conflicts,
     placement_conflicts,
 )
@@ -133,15 +138,15 @@ def resolve_conflicts(
     ):
         return Resolution(first, 0)
     enclosing = [a for a in _ancestors(subtree) if isinstance(a, Fallback) and a.parent]
-    plans: list[tuple[Node, list[Slot]]] = [(subtree, paper_slots(subtree))]
+    plans: list[tuple[Node, list[Slot], bool]] = [(subtree, paper_slots(subtree), False)]
     if reorder_goals:
-        plans += [(a, paper_slots(a)) for a in enclosing]
-        plans += [(a, nested_slots(a)) for a in enclosing]
-        plans += [(subtree, nested_slots(subtree))]
-    for mover, slots in plans:
+        plans += [(a, paper_slots(a), False) for a in enclosing]
+        plans += [(a, nested_slots(a), True) for a in enclosing]
+        plans += [(subtree, nested_slots(subtree), True)]
+    for mover, slots, nested in plans:
         for number, slot in enumerate(slots, start=1):
             undo = move_to(mover, slot)
-            if _settled(subtree, mover, judge):
+            if _settled(subtree, mover, judge) and not (nested and circular_place(mover, judge)):
                 return Resolution(first, number)
             undo()
     listed = "; ".join(sorted({str(c) for c in first}))

@@ -12,7 +12,7 @@ from typer.testing import CliRunner
 
 import btplan.acting.offline
 from btplan.cli import app
-from btplan.cli.app import EXIT_CODES
+from btplan.cli.typer_app import EXIT_CODES
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 PICK = str(DOMAINS / "pick_place.bt")

@@ -18,9 +18,10 @@ from btplan.lang.generators import generate
 HEAVY = ("rich", "pydantic", "pybullet", "numpy", "matplotlib", "email", "importlib.metadata",
          "lark", "btplan.lang.bt_reader", "btplan.acting.online", "btplan.worlds.disturb",
          "btplan.bt.formats.btcpp", "btplan.bt.formats.saved", "btplan.acting.live_view",
-         "btplan.sweep", "btplan.worlds.pybullet")
+         "btplan.sweep", "btplan.worlds.pybullet", "typer", "click")
 """Modules (and their submodules) that neither start-up nor `btplan plan` of well-formed
-PDDL needs (lark builds parsers: it reads .bt files and words PDDL syntax errors)."""
+PDDL needs (lark builds parsers: it reads .bt files and words PDDL syntax errors; typer
+builds the command line for help, errors and the other commands, cli/lean.py)."""
 
 REPORT = """
 import json, sys

@@ -1,0 +1,86 @@
+"""The lean start of `btplan plan` answers exactly as the typer command does.
+
+Each argument vector runs twice in fresh interpreters: through the console script
+(`main`, which takes the lean path when it can read the arguments) and through the
+typer app alone. Standard output, standard error (run times masked), the exit code
+and every file written (read, then removed for the next run) must be the same.
+"""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from btplan.cli.lean import read_plan_arguments
+from btplan.lang.generators import generate
+
+SCRIPT = "from btplan.cli import main; import sys; sys.argv[0] = 'btplan'; main()"
+TYPER = ("import sys; from btplan.cli import app, only_the_command_asked_for; "
+         "only_the_command_asked_for(sys.argv[1:2]); app(prog_name='btplan')")
+SECONDS = re.compile(r"\d+\.\d+ s\b")
+
+
+def run(script: str, argv: list[str], where: Path) -> tuple[int, str, str, dict[str, str]]:
+    done = subprocess.run([sys.executable, "-c", script, *argv], capture_output=True,
+                          text=True, timeout=300, cwd=where)
+    written = {}
+    for path in sorted(where.iterdir()):
+        if path.suffix != ".pddl":
+            written[path.name] = path.read_text()
+            path.unlink()
+    return done.returncode, done.stdout, SECONDS.sub("T s", done.stderr), written
+
+
+@pytest.fixture()
+def problem(tmp_path: Path) -> Path:
+    domain_text, problem_text = generate("blocksworld", "pddl", seed=2, blocks=3)
+    (tmp_path / "d.pddl").write_text(domain_text)
+    (tmp_path / "p.pddl").write_text(problem_text)
+    return tmp_path
+
+
+VECTORS = [
+    ["plan", "d.pddl", "p.pddl"],
+    ["plan", "d.pddl", "p.pddl", "-f", "dot", "-o", "tree.dot", "--plan-out", "plan.txt"],
+    ["plan", "-q", "d.pddl", "--format=xml", "p.pddl", "--seed", "3", "--timeout=2.5"],
+    ["plan", "d.pddl", "p.pddl", "--out", "t.json", "-o", "u.json", "--paper", "--no-search"],
+    ["plan", "d.pddl", "p.pddl", "--max-expansions", "0"],
+    ["plan", "d.pddl", "p.pddl", "--max-alternatives", "1", "--max-ticks", "3"],
+    ["plan", "missing.pddl", "p.pddl"],
+    ["plan", "p.pddl", "d.pddl"],
+    ["plan", "d.pddl", "p.pddl", "--plan-out", "no/such/folder/plan.txt"],
+    ["plan", "d.pddl", "p.pddl", "-f", "yaml"],
+    ["plan", "d.pddl", "p.pddl", "--timeout", "-1"],
+    ["plan", "d.pddl", "p.pddl", "extra"],
+    ["plan"],
+]
+
+
+@pytest.mark.parametrize("argv", VECTORS, ids=[" ".join(v[1:]) or "none" for v in VECTORS])
+def test_the_lean_start_and_the_typer_app_answer_alike(argv: list[str], problem: Path) -> None:
+    assert run(SCRIPT, argv, problem) == run(TYPER, argv, problem)
+
+
+def test_the_lean_start_reads_plain_arguments() -> None:
+    assert read_plan_arguments(["d", "p", "-o", "-", "--seed", "7", "--timeout=1.5", "-q"]) == {
+        "domain": "d", "problem": "p", "out": "-", "seed": 7, "timeout": 1.5, "quiet": True}
+    assert read_plan_arguments(["-", "--out", "a", "-o", "b"]) == {
+        "domain": "-", "problem": None, "out": "a"}
+
+
+@pytest.mark.parametrize("args", [
+    [], ["--help"], ["d", "-h"], ["d", "--seed", "x"], ["d", "--seed", "-1"], ["d", "-o=x"],
+    ["d", "--timeout", "1e3"], ["d", "-f", "XML"], ["d", "p", "q"], ["d", "--"], ["d", "-qo", "x"],
+    ["d", "--plan-out"], ["d", "--paper=1"], ["d", "--format="], ["d", "--unknown"],
+])
+def test_anything_else_is_left_to_typer(args: list[str]) -> None:
+    assert read_plan_arguments(args) is None
+
+
+def test_the_vectors_above_take_both_paths() -> None:
+    lean = [read_plan_arguments(argv[1:]) is not None for argv in VECTORS]
+    assert lean == [True] * 9 + [False] * 4
