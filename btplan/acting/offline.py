@@ -122,28 +122,37 @@ def plan(
     soft = deadline
     if whole and timeout:  # leave the whole-goal search its share of the time
         soft = started + timeout * BACKCHAIN_SHARE
+    run = _Run(task, seed, max_ticks, deadline, timeout, on_expansion, started, models, stop)
     try:
-        return _strategies(task, seed, strategies, max_ticks, soft,
-                           None if soft is None else soft - started, on_expansion, started,
-                           models, stop)
+        return _strategies(replace(run, deadline=soft,
+                                   timeout=None if soft is None else soft - started), strategies)
     except PlanningError as error:
         out_of_time = deadline is not None and time.perf_counter() >= deadline
         if not whole or out_of_time:
             raise
-        return _whole_goal(task, seed, opts, max_ticks, deadline, timeout, on_expansion,
-                           started, models, stop, error)
+        return _whole_goal(run, opts, error)
+
+
+@dataclass(frozen=True)
+class _Run:
+    """What every attempt of one `plan` call shares: the task, its limits, its callbacks."""
+
+    task: Task
+    seed: int
+    max_ticks: int
+    deadline: float | None
+    timeout: float | None
+    on_expansion: Callable[[BehaviorTree, Expansion], None] | None
+    started: float
+    models: AchieverIndex
+    stop: Callable[[], bool] | None
 
 
 BACKCHAIN_SHARE = 0.8
 """The share of a time limit backchaining gets before the whole-goal search (the last resort)."""
 
 
-def _strategies(
-    task: Task, seed: int, strategies: list[PlannerOptions], max_ticks: int,
-    deadline: float | None, timeout: float | None,
-    on_expansion: Callable[[BehaviorTree, Expansion], None] | None, started: float,
-    models: AchieverIndex, stop: Callable[[], bool] | None,
-) -> PlanResult:
+def _strategies(run: _Run, strategies: list[PlannerOptions]) -> PlanResult:
     """The strategies in turn; the first error, saying what the others did, when all fail."""
     first_error: PlanningError | None = None
     found: PlanResult | None = None
@@ -152,8 +161,7 @@ def _strategies(
         if number:  # the later strategies start from scratch, without retries
             strategy = replace(strategy, retries=0)
         try:
-            result = _retrying(task, seed, strategy, max_ticks, deadline, timeout, on_expansion,
-                               started, models, stop, given_up)
+            result = _retrying(run, strategy, given_up)
         except BudgetExceededError:
             if found is not None:
                 return found
@@ -176,19 +184,15 @@ def _strategies(
     raise first_error
 
 
-def _whole_goal(
-    task: Task, seed: int, opts: PlannerOptions, max_ticks: int, deadline: float | None,
-    timeout: float | None, on_expansion: Callable[[BehaviorTree, Expansion], None] | None,
-    started: float, models: AchieverIndex, stop: Callable[[], bool] | None,
-    backchaining: PlanningError,
-) -> PlanResult:
+def _whole_goal(run: _Run, opts: PlannerOptions, backchaining: PlanningError) -> PlanResult:
     """The last resort when backchaining failed: search a plan for the whole goal from
     the initial state and put it behind the goal tree (rescue.plan_whole_goal)."""
+    task, deadline, models = run.task, run.deadline, run.models
     proof = _unsolvable(task, models)
     if proof is not None:
         raise type(backchaining)(f"{backchaining.reason}; and no plan exists: {proof}")
     engine = models.subgoal_search
-    start = SymbolicWorld(task, seed=seed).facts()
+    start = SymbolicWorld(task, seed=run.seed).facts()
     steps = engine.search(start, list(task.goal_literals), max_states=WHOLE_STATES,
                           deadline=deadline, max_stored=WHOLE_STORED)
     if steps is None:
@@ -200,8 +204,7 @@ def _whole_goal(
             f"found no plan ({why} after {engine.expanded} states)")
         raise error
     options = replace(opts, search_stuck=False, retries=0)
-    result = _attempt(task, seed, options, max_ticks, deadline, timeout, on_expansion, started,
-                      models, stop, plan=steps)
+    result = _attempt(run, options, plan=steps)
     result.stats.whole_goal = True
     return result
 
@@ -227,12 +230,7 @@ WHOLE_STORED = 200_000
 states have a thousand successors (1.5 GB in 30 s without this bound)."""
 
 
-def _retrying(
-    task: Task, seed: int, opts: PlannerOptions, max_ticks: int, deadline: float | None,
-    timeout: float | None, on_expansion: Callable[[BehaviorTree, Expansion], None] | None,
-    started: float, models: AchieverIndex, stop: Callable[[], bool] | None,
-    given_up: list[Choice],
-) -> PlanResult:
+def _retrying(run: _Run, opts: PlannerOptions, given_up: list[Choice]) -> PlanResult:
     """Attempts of one strategy, each after a failure without one more achiever choice.
 
     When an attempt stops (no conflict-free place, a dead end, a loop), the choice the
@@ -245,15 +243,14 @@ def _retrying(
     for attempt in range(opts.retries + 1):
         culprits: list[Choice] = []
         try:
-            result = _attempt(task, seed, opts, max_ticks, deadline, timeout, on_expansion,
-                              started, models, stop, frozenset(banned), culprits)
+            result = _attempt(run, opts, frozenset(banned), culprits)
         except BudgetExceededError:
             raise
         except PlanningError as error:
             first = first or error
             fresh = [c for c in culprits if c not in banned]
-            late = deadline is not None and time.perf_counter() > started + RETRY_SHARE * (
-                deadline - started)
+            late = run.deadline is not None and time.perf_counter() > run.started + (
+                RETRY_SHARE * (run.deadline - run.started))
             if not fresh or attempt == opts.retries or late:
                 break
             banned.append(fresh[0])
@@ -300,16 +297,8 @@ def fallback_strategies(options: PlannerOptions) -> list[PlannerOptions]:
 
 
 def _attempt(
-    task: Task,
-    seed: int,
+    run: _Run,
     opts: PlannerOptions,
-    max_ticks: int,
-    deadline: float | None,
-    timeout: float | None,
-    on_expansion: Callable[[BehaviorTree, Expansion], None] | None,
-    started: float,
-    models: AchieverIndex,
-    stop: Callable[[], bool] | None = None,
     banned: frozenset[Choice] = frozenset(),
     culprits: list[Choice] | None = None,
     plan: list[GroundAction] | None = None,
@@ -321,36 +310,27 @@ def _attempt(
     tree before the first tick.
     """
     groundings: dict[LeafKey, GroundAction] = {}
-    world = SymbolicWorld(task, seed=seed, groundings=groundings)
-    loop = BlendedLoop(task, world, opts, like=models, banned=banned)
+    world = SymbolicWorld(run.task, seed=run.seed, groundings=groundings)
+    loop = BlendedLoop(run.task, world, opts, like=run.models, banned=banned)
     if plan is not None:
         loop.adopt_plan(plan)
     try:
-        return _rounds(task, seed, opts, max_ticks, deadline, timeout, on_expansion, started,
-                       loop, groundings, stop)
+        return _rounds(run, opts, loop, groundings)
     finally:
         if culprits is not None:
             culprits.extend(loop.culprits)
 
 
 def _rounds(
-    task: Task,
-    seed: int,
-    opts: PlannerOptions,
-    max_ticks: int,
-    deadline: float | None,
-    timeout: float | None,
-    on_expansion: Callable[[BehaviorTree, Expansion], None] | None,
-    started: float,
-    loop: BlendedLoop,
-    groundings: dict[LeafKey, GroundAction],
-    stop: Callable[[], bool] | None,
+    run: _Run, opts: PlannerOptions, loop: BlendedLoop, groundings: dict[LeafKey, GroundAction]
 ) -> PlanResult:
     """The runs of one attempt, each from the initial state."""
+    task, seed, deadline, stop, on_expansion = (run.task, run.seed, run.deadline, run.stop,
+                                                run.on_expansion)
     world = loop.world
     assert isinstance(world, SymbolicWorld)
     loop.deadline = deadline
-    ticks_left = max_ticks
+    ticks_left = run.max_ticks
 
     def watch(report: TickReport) -> None:
         if stop is not None and stop():
@@ -359,7 +339,7 @@ def _rounds(
                               f"(tree of {len(loop.tree.nodes())} nodes)")
         if deadline is not None and time.perf_counter() > deadline:
             raise BudgetExceededError(
-                f"time limit of {timeout:g} s reached after {len(loop.expansions)} expansions "
+                f"time limit of {run.timeout:g} s reached after {len(loop.expansions)} expansions "
                 f"(tree of {len(loop.tree.nodes())} nodes); expanded most often: "
                 f"{loop.most_expanded() or 'nothing'}")
         if on_expansion is not None:
@@ -388,7 +368,7 @@ def _rounds(
             return PlanResult(
                 tree=loop.tree,
                 executed=list(world.executed),
-                stats=_stats(loop, world, rounds, time.perf_counter() - started,
+                stats=_stats(loop, world, rounds, time.perf_counter() - run.started,
                              loop.premature_successes - premature_before),
                 expansions=list(loop.expansions),
             )
