@@ -124,8 +124,11 @@ def plan(
         soft = started + timeout * BACKCHAIN_SHARE
     run = _Run(task, seed, max_ticks, deadline, timeout, on_expansion, started, models, stop)
     try:
-        return _strategies(replace(run, deadline=soft,
-                                   timeout=None if soft is None else soft - started), strategies)
+        share = run if soft == deadline or soft is None or timeout is None else replace(
+            run, deadline=soft, timeout=soft - started,
+            limit=f"backchaining's share ({timeout * BACKCHAIN_SHARE:g} s) of the {timeout:g} s "
+                  "time limit")
+        return _strategies(share, strategies)
     except PlanningError as error:
         out_of_time = deadline is not None and time.perf_counter() >= deadline
         if not whole or out_of_time:
@@ -146,6 +149,8 @@ class _Run:
     started: float
     models: AchieverIndex
     stop: Callable[[], bool] | None
+    limit: str = ""
+    """How a failure names the time limit that ran out, when it is not `timeout` itself."""
 
 
 BACKCHAIN_SHARE = 0.8
@@ -339,7 +344,7 @@ def _rounds(
                               f"(tree of {len(loop.tree.nodes())} nodes)")
         if deadline is not None and time.perf_counter() > deadline:
             raise BudgetExceededError(
-                f"time limit of {run.timeout:g} s reached after {len(loop.expansions)} expansions "
+                f"{run.limit or f'time limit of {run.timeout:g} s'} reached after {len(loop.expansions)} expansions "
                 f"(tree of {len(loop.tree.nodes())} nodes); expanded most often: "
                 f"{loop.most_expanded() or 'nothing'}")
         if on_expansion is not None:

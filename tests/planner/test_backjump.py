@@ -110,3 +110,14 @@ def test_the_whole_goal_is_not_searched_for_when_h2_proves_it_never_holds(
     task = load(str(tmp_path / "domain.pddl"), str(tmp_path / "problem.pddl"))
     with pytest.raises(PlanningError, match=r"no plan exists: p\(\) and q\(\) can never hold"):
         plan(task)
+
+
+def test_a_time_limit_that_runs_out_is_named_as_the_user_gave_it() -> None:
+    # A limit far shorter than any tick: the first tick's check stops planning.
+    task = load(str(DOMAINS / "planner_sussman.bt"))
+    with pytest.raises(BudgetExceededError, match=r"^time limit of 1e-09 s reached after"):
+        plan(task, timeout=1e-9, options=PlannerOptions())
+    # With the last resort on, backchaining has a share of it, and the message says so.
+    with pytest.raises(BudgetExceededError,
+                       match=r"^backchaining's share \(8e-10 s\) of the 1e-09 s time limit"):
+        plan(task, timeout=1e-9)
