@@ -9,11 +9,10 @@ calls when it grounds an action template.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 
-from btplan.bt.status import FAILURE, RUNNING, Status
 from btplan.errors import WorldError
-from btplan.model import ActionTemplate, Atom, GroundAction, Parameter, Task, instantiate
+from btplan.model import ActionTemplate, Parameter, Task
 from btplan.worlds.pybullet import motion, samplers
 from btplan.worlds.pybullet.agents import SceneAgents
 from btplan.worlds.pybullet.arm import Timings
@@ -21,20 +20,19 @@ from btplan.worlds.pybullet.conditions import Conditions, Key
 from btplan.worlds.pybullet.refine import refine_values
 from btplan.worlds.pybullet.routes import Routes
 from btplan.worlds.pybullet.scene import Scene
+from btplan.worlds.pybullet.skill_world import SkillWorld
 from btplan.worlds.pybullet.skills import Scripted, Skill, move_to, pick, put_down
 from btplan.worlds.pybullet.state import SceneState
 
-Frame = Callable[[SceneState, str], None]
 
-
-class PyBulletWorld:
+class PyBulletWorld(SkillWorld[SceneState, Conditions]):
     """A mobile robot with a gripper among walls and cubes; see the module docstring."""
 
     def __init__(self, task: Task, scene: Scene, seed: int = 0, gui: bool = False,
                  verbose: bool = False, agents: SceneAgents | None = None) -> None:
         motion.set_log_level(verbose)
         motion.seed_rng(seed + 1)  # OMPL refuses a zero seed
-        self.task, self.scene = task, scene
+        self.scene = scene
         self.state = SceneState(task, scene, gui)
         self.routes = Routes(self.state)
         scene_names = {*self.state.cube_names, *(r.name for r in scene.regions)}
@@ -42,73 +40,11 @@ class PyBulletWorld:
         # problem declares) cannot be measured; they are kept as given.
         assumed = frozenset(a for a in task.initial_state
                             if any(x not in scene_names for x in a.args))
-        self.conditions = Conditions(self.routes, assumed)
-        self.running: dict[Key, Skill] = {}
+        super().__init__(task, self.state, Conditions(self.routes, assumed))
         self.timings = Timings()
-        # Logs of grounded actions, as every world keeps them (traces, --plan-out, agents).
-        self.executed: list[GroundAction] = []
-        self.started: list[GroundAction] = []
-        self.halted: list[GroundAction] = []
-        self.failed: list[GroundAction] = []
         self.agents = agents if agents is not None else SceneAgents()
         self.agents.bind(self.state, self.check)
-        self.on_frame: Frame | None = None
-        self.save_recording: Callable[[], None] | None = None
-        self.action_ticks = 0
-        self.current: str = ""
         self._refined: dict[tuple[str, str, tuple[tuple[str, str], ...]], list[str]] = {}
-
-    @property
-    def sim_seconds(self) -> float:
-        """Simulated time: the physics steps taken so far."""
-        return self.state.seconds
-
-    # --- conditions ----------------------------------------------------------------------
-
-    def check(self, key: Key) -> bool:
-        return self.conditions.check(key)
-
-    def facts(self) -> frozenset[Atom]:
-        return self.conditions.facts()
-
-    # --- actions -------------------------------------------------------------------------
-
-    def ground(self, key: Key) -> GroundAction:
-        """The grounded action of a leaf key, for the logs."""
-        template = self.task.domain.action_map.get(key[0])
-        if template is None or len(template.parameters) != len(key[1]):
-            raise WorldError(f"{key[0]}{key[1]} is not an action of domain {self.task.domain.name!r}")
-        return instantiate(template, key[1])
-
-    def start(self, key: Key) -> Status:
-        self.started.append(self.ground(key))
-        skill = self._skill(key)
-        if skill is None:
-            self.failed.append(self.ground(key))
-            return FAILURE
-        self.running[key] = skill
-        return self.step(key)
-
-    def step(self, key: Key) -> Status:
-        skill = self.running.get(key)
-        if skill is None:
-            return FAILURE
-        self.action_ticks += 1
-        status = skill.step()
-        self.current = f"{key[0]}({', '.join(key[1])})"
-        if status is not RUNNING:
-            del self.running[key]
-            log = self.failed if status is FAILURE else self.executed
-            log.append(self.ground(key))
-        if self.on_frame is not None:
-            self.on_frame(self.state, f"t={self.sim_seconds:5.1f}s  {self.current}")
-        return status
-
-    def halt(self, key: Key) -> None:
-        skill = self.running.pop(key, None)
-        if skill is not None:
-            self.halted.append(self.ground(key))
-            skill.halt()
 
     def _skill(self, key: Key) -> Skill | None:
         name, args = key
@@ -181,17 +117,3 @@ class PyBulletWorld:
     def scene_agents(self) -> list[SceneAgents]:
         """The scene's scripted external events, as one agent acting before each tick."""
         return [self.agents]
-
-    def halt_all(self) -> None:
-        """Halt every running skill (an interrupted run): each leaves the world consistent."""
-        for key in sorted(self.running):
-            self.halt(key)
-
-    def close(self) -> None:
-        """Halt what runs, save the recording (if any) and disconnect from PyBullet."""
-        self.halt_all()
-        if self.save_recording is not None:
-            self.save_recording()
-            self.save_recording = None
-        self.state.close()
-        motion.release()

@@ -8,11 +8,10 @@ SUCCESS the moment all its effects are measured on the scene.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 
-from btplan.bt.status import FAILURE, RUNNING, Status
 from btplan.errors import WorldError
-from btplan.model import ActionTemplate, Atom, GroundAction, Parameter, Task, instantiate
+from btplan.model import ActionTemplate, Parameter, Task
 from btplan.worlds.pybullet import motion
 from btplan.worlds.pybullet.arm import Timings
 from btplan.worlds.pybullet.assembly import skills
@@ -21,93 +20,39 @@ from btplan.worlds.pybullet.assembly.conditions import AssemblyConditions, Key
 from btplan.worlds.pybullet.assembly.scene import AssemblyScene
 from btplan.worlds.pybullet.assembly.state import AssemblyState
 from btplan.worlds.pybullet.sim import HZ
+from btplan.worlds.pybullet.skill_world import SkillWorld
 
-Frame = Callable[[AssemblyState, str], None]
 
-
-class AssemblyWorld:
+class AssemblyWorld(SkillWorld[AssemblyState, AssemblyConditions]):
     """Two Pandas across a table, parts to assemble on a fixture; see the module docstring."""
 
     def __init__(self, task: Task, scene: AssemblyScene, seed: int = 0, gui: bool = False,
                  verbose: bool = False) -> None:
         motion.set_log_level(verbose)
         motion.seed_rng(seed + 1)  # OMPL refuses a zero seed
-        self.task, self.scene = task, scene
-        self.state = AssemblyState(task, scene, gui)
-        self.conditions = AssemblyConditions(self.state, task)
+        self.scene = scene
+        state = AssemblyState(task, scene, gui)
+        super().__init__(task, state, AssemblyConditions(state, task))
         self.agents: AssemblyAgents = assembly_agents(self.state, self.check)
         self.timings = Timings()
-        self.running: dict[Key, skills.Scripted] = {}
-        self.executed: list[GroundAction] = []
-        self.started: list[GroundAction] = []
-        self.halted: list[GroundAction] = []
-        self.failed: list[GroundAction] = []
-        self.on_frame: Frame | None = None
-        self.save_recording: Callable[[], None] | None = None
-        self.action_ticks = 0
-        self.current = ""
         self.settle(1.0)  # parts laid out a millimetre above the table come to rest
 
     def settle(self, seconds: float) -> None:
         for _ in range(int(seconds * HZ)):
             self.state.sim.step()
 
-    @property
-    def sim_seconds(self) -> float:
-        return self.state.seconds
-
-    # --- conditions ----------------------------------------------------------------------
-
-    def check(self, key: Key) -> bool:
-        return self.conditions.check(key)
-
-    def facts(self) -> frozenset[Atom]:
-        return self.conditions.facts()
-
-    # --- actions -------------------------------------------------------------------------
-
-    def ground(self, key: Key) -> GroundAction:
-        template = self.task.domain.action_map.get(key[0])
-        if template is None or len(template.parameters) != len(key[1]):
-            raise WorldError(f"{key[0]}{key[1]} is not an action of domain "
-                             f"{self.task.domain.name!r}")
-        return instantiate(template, key[1])
-
-    def start(self, key: Key) -> Status:
-        action = self.ground(key)
-        self.started.append(action)
+    def _skill(self, key: Key) -> skills.Scripted | None:
         script = self._script(key)
         if script is None:
-            self.failed.append(action)
-            return FAILURE
+            return None
+        action = self.ground(key)
 
         def done() -> bool:
             return all(self.check((a.predicate, a.args)) for a in action.add) and not any(
                 self.check((a.predicate, a.args)) for a in action.delete if a not in action.add)
 
-        self.running[key] = skills.Scripted(self.state, script, done,
-                                            lambda: skills.let_go_unless_held(self.state))
-        return self.step(key)
-
-    def step(self, key: Key) -> Status:
-        skill = self.running.get(key)
-        if skill is None:
-            return FAILURE
-        self.action_ticks += 1
-        status = skill.step()
-        self.current = str(self.ground(key))
-        if status is not RUNNING:
-            del self.running[key]
-            (self.failed if status is FAILURE else self.executed).append(self.ground(key))
-        if self.on_frame is not None:
-            self.on_frame(self.state, f"t={self.sim_seconds:5.1f}s  {self.current}")
-        return status
-
-    def halt(self, key: Key) -> None:
-        skill = self.running.pop(key, None)
-        if skill is not None:
-            self.halted.append(self.ground(key))
-            skill.halt()
+        return skills.Scripted(self.state, script, done,
+                               lambda: skills.let_go_unless_held(self.state))
 
     def _script(self, key: Key) -> skills.Script | None:
         name, args = key
@@ -143,15 +88,3 @@ class AssemblyWorld:
 
     def scene_agents(self) -> list[AssemblyAgents]:
         return [self.agents]
-
-    def halt_all(self) -> None:
-        for key in sorted(self.running):
-            self.halt(key)
-
-    def close(self) -> None:
-        self.halt_all()
-        if self.save_recording is not None:
-            self.save_recording()
-            self.save_recording = None
-        self.state.close()
-        motion.release()

@@ -1,0 +1,129 @@
+"""What both PyBullet worlds do alike: run one skill per action leaf, keep the logs.
+
+The mobile robot and the two-arm assembly differ in their scene, conditions and
+skills, not in how a leaf's start, step and halt drive a skill, nor in the logs of
+grounded actions every world keeps (traces, --plan-out, agents). Each world builds its
+state and conditions, calls `SkillWorld.__init__`, and says which skill runs an action
+(`_skill`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Generic, Protocol, TypeVar
+
+from btplan.bt.status import FAILURE, RUNNING, Status
+from btplan.errors import WorldError
+from btplan.model import Atom, GroundAction, Task, instantiate
+from btplan.worlds.pybullet import motion
+from btplan.worlds.pybullet.skills import Skill
+
+Key = tuple[str, tuple[str, ...]]
+
+
+class _State(Protocol):
+    @property
+    def seconds(self) -> float: ...
+
+    def close(self) -> None: ...
+
+
+class _Conditions(Protocol):
+    def check(self, key: Key) -> bool: ...
+
+    def facts(self) -> frozenset[Atom]: ...
+
+
+StateT = TypeVar("StateT", bound=_State)
+ConditionsT = TypeVar("ConditionsT", bound=_Conditions)
+
+
+class SkillWorld(Generic[StateT, ConditionsT]):
+    """Start, step and halt skills for the tree's action leaves; see the module docstring."""
+
+    def __init__(self, task: Task, state: StateT, conditions: ConditionsT) -> None:
+        self.task = task
+        self.state = state
+        self.conditions = conditions
+        self.running: dict[Key, Skill] = {}
+        self.executed: list[GroundAction] = []
+        self.started: list[GroundAction] = []
+        self.halted: list[GroundAction] = []
+        self.failed: list[GroundAction] = []
+        self.on_frame: Callable[[StateT, str], None] | None = None
+        self.save_recording: Callable[[], None] | None = None
+        self.action_ticks = 0
+        self.current = ""
+
+    def _skill(self, key: Key) -> Skill | None:
+        """The skill that runs the action, or None when it cannot start here."""
+        raise NotImplementedError
+
+    @property
+    def sim_seconds(self) -> float:
+        """Simulated time: the physics steps taken so far."""
+        return self.state.seconds
+
+    # --- conditions ----------------------------------------------------------------------
+
+    def check(self, key: Key) -> bool:
+        return self.conditions.check(key)
+
+    def facts(self) -> frozenset[Atom]:
+        return self.conditions.facts()
+
+    # --- actions -------------------------------------------------------------------------
+
+    def ground(self, key: Key) -> GroundAction:
+        """The grounded action of a leaf key, for the logs."""
+        template = self.task.domain.action_map.get(key[0])
+        if template is None or len(template.parameters) != len(key[1]):
+            raise WorldError(f"{key[0]}{key[1]} is not an action of domain "
+                             f"{self.task.domain.name!r}")
+        return instantiate(template, key[1])
+
+    def start(self, key: Key) -> Status:
+        action = self.ground(key)
+        self.started.append(action)
+        skill = self._skill(key)
+        if skill is None:
+            self.failed.append(action)
+            return FAILURE
+        self.running[key] = skill
+        return self.step(key)
+
+    def step(self, key: Key) -> Status:
+        skill = self.running.get(key)
+        if skill is None:
+            return FAILURE
+        self.action_ticks += 1
+        status = skill.step()
+        self.current = f"{key[0]}({', '.join(key[1])})"
+        if status is not RUNNING:
+            del self.running[key]
+            (self.failed if status is FAILURE else self.executed).append(self.ground(key))
+        if self.on_frame is not None:
+            self.on_frame(self.state, f"t={self.sim_seconds:5.1f}s  {self.current}")
+        return status
+
+    def halt(self, key: Key) -> None:
+        skill = self.running.pop(key, None)
+        if skill is not None:
+            self.halted.append(self.ground(key))
+            skill.halt()
+
+    # --- lifecycle -----------------------------------------------------------------------
+
+    def halt_all(self) -> None:
+        """Halt every running skill (an interrupted run): each leaves the world consistent."""
+        for key in sorted(self.running):
+            self.halt(key)
+
+    def close(self) -> None:
+        """Halt what runs, save the recording (if any) and disconnect from PyBullet."""
+        self.halt_all()
+        if self.save_recording is not None:
+            self.save_recording()
+            self.save_recording = None
+        self.state.close()
+        motion.release()
