@@ -138,7 +138,8 @@ class _Observer:
             added=tuple(str(a) for a in sorted(facts - self._facts)),
             removed=tuple(str(a) for a in sorted(self._facts - facts)),
             planning_seconds=report.planning_seconds,
-            checks=sum(1 for t in traces for n in t.nodes if n.kind == "Condition"),
+            checks=sum(1 for t in traces for n in t.nodes if n.kind == "Condition")
+            + report.checks_ahead,
         )
         self._facts = facts
         self.records.append(record)

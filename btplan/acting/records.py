@@ -55,7 +55,8 @@ class TickRecord:
     planning_seconds: float = 0.0
     """CPU time spent expanding the tree in this tick (not written to traces: it varies)."""
     checks: int = 0
-    """Conditions the tree checked in this tick (every tick of the tree, if it grew)."""
+    """Conditions the tree checked in this tick (every tick of the tree, if it grew), and
+    those looked at ahead of the running actions (btplan.acting.watch)."""
 
     def to_dict(self) -> dict[str, Any]:
         return {

@@ -1,0 +1,82 @@
+"""Expansions made before a tick reaches the condition, in the tick the loop is in.
+
+Two kinds, both off in the published algorithm (`look_ahead`): the later false
+preconditions of an action whose first false one was just expanded
+(btplan.acting.ahead), and the conditions ahead of the running actions that an outside
+change broke (btplan.acting.watch). Each is expanded as the tick that reached it would
+expand it, conflict resolution included; one without achievers or without a
+conflict-free place now is left for that tick to find.
+"""
+
+from __future__ import annotations
+
+import time
+
+from btplan.acting.ahead import attached, later_false
+from btplan.acting.choice import achievers_for
+from btplan.acting.state import LoopState, TickReport
+from btplan.acting.watch import broken_ahead
+from btplan.bt import Node
+from btplan.errors import UnresolvableConflictError
+from btplan.model import Atom
+from btplan.planner import literal_of
+
+
+def expand_ahead(loop: LoopState, report: TickReport) -> None:
+    """Expand the false preconditions after the one just expanded (`loop.ahead`), as the
+    tick would once the robot had achieved that one."""
+    pending, loop.ahead = loop.ahead, []
+    state = loop.world.facts()
+    for node in pending:
+        if not _room(loop, report):
+            return
+        literal = literal_of(node)
+        if literal is None or literal.holds(state):
+            continue
+        _expand_early(loop, report, node, state)
+
+
+def expand_broken(loop: LoopState, report: TickReport, last: frozenset[Atom]) -> None:
+    """Expand the conditions ahead of the running actions that held in `last`, the state
+    after the previous tick, and an outside change made false; each with its later
+    false preconditions. Looking is monitoring (`report.checks_ahead`); the expansions
+    are planning, timed as such."""
+    state = loop.world.facts()
+    broken, report.checks_ahead = broken_ahead(loop.tree.root, state, last, loop.expanded)
+    if not broken:
+        return
+    started = time.process_time()
+    try:
+        for node in broken:
+            if not _room(loop, report):
+                return
+            ahead = later_false(node, state, loop.expanded)
+            if _expand_early(loop, report, node, state):
+                loop.ahead = ahead
+                expand_ahead(loop, report)
+    finally:
+        report.planning_seconds += time.process_time() - started
+
+
+def _room(loop: LoopState, report: TickReport) -> bool:
+    """Whether this tick and the run may still expand."""
+    return (len(report.expansions) < loop.options.expansions_per_tick
+            and len(loop.expansions) < loop.options.max_expansions)
+
+
+def _expand_early(loop: LoopState, report: TickReport, node: Node,
+                  state: frozenset[Atom]) -> bool:
+    """ExpandTree and conflict resolution on `node`; False when it is left for later."""
+    literal = literal_of(node)
+    if literal is None or node in loop.expanded or not attached(node, loop.tree.root):
+        return False
+    achievers, spare = achievers_for(loop, node, literal, state)
+    if not achievers:
+        return False
+    try:
+        expansion = loop.apply(node, literal, achievers, spare)
+    except UnresolvableConflictError:
+        return False
+    loop.expanded.add(node)
+    report.expansions.append(expansion)
+    return True

@@ -1,0 +1,52 @@
+"""Telling a loop that goes round in circles from one that makes progress.
+
+When the world comes back to a state it was in, under the same tree (no expansion in
+between) and with no outside change, the tree will do what it did from there before:
+the loop goes round. An outside change is one seen between two ticks, or one a world
+counts in `outside_changes` (agents that act while the robot does, as in the PyBullet
+world). In a `continuous` world, where facts change while an action runs (a robot
+driving past a cube), states are compared only on ticks where an action ended: passing
+by the same place twice within one action is not a loop, and a loop of actions still
+repeats its states there.
+"""
+
+from __future__ import annotations
+
+from btplan.model import Atom
+
+
+class Circles:
+    """The states seen since the last outside change, each with the tree's size then."""
+
+    def __init__(self) -> None:
+        self._seen: set[tuple[frozenset[Atom], int]] = set()
+        self._outside = 0
+        self._ended = 0
+
+    def forget(self) -> None:
+        """A repeated state is no longer a loop (an outside change, another world)."""
+        self._seen.clear()
+
+    def repeated(self, world: object, before: frozenset[Atom], after: frozenset[Atom],
+                 expansions: int) -> bool:
+        """Record the state after a tick; True when the loop was in it before."""
+        outside = int(getattr(world, "outside_changes", 0))
+        if outside != self._outside:
+            # Someone else acted while the tree ticked: a repeated state is no longer a loop.
+            self._outside = outside
+            self._seen.clear()
+        ended = _actions_ended(world)
+        boundary = ended != self._ended or not getattr(world, "continuous", False)
+        self._ended = ended
+        if after == before or not boundary:
+            return False
+        key = (after, expansions)
+        if key in self._seen:
+            return True
+        self._seen.add(key)
+        return False
+
+
+def _actions_ended(world: object) -> int:
+    """How many actions the world has seen end (done, failed or halted), where it logs them."""
+    return sum(len(getattr(world, log, ())) for log in ("executed", "failed", "halted"))
