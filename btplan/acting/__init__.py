@@ -1,10 +1,12 @@
 """The acting layer: Algorithm 1 run against a world, offline (planning) and online (acting).
 
-`loop` ticks the tree and grows it where it fails; `offline` plans a tree from the
-initial state; `online` acts with external agents and records each tick; `records`
-holds the per-tick records and the run summary; `live_view` draws them in a terminal;
-`ahead` and `scope` are options of the online loop (look ahead along an action's
-preconditions; skip a moved subtree while what it was moved for holds).
+`loop` ticks the tree and grows it where it fails (its parts are listed in `state`);
+`offline` plans a tree from the initial state; `online` acts with external agents and
+records each tick; `records` holds the per-tick records and the run summary;
+`live_view` draws them in a terminal; `ahead`, `watch` and `scope` are options of the
+online loop (look ahead along an action's preconditions; expand a condition ahead of the
+running action when an agent breaks it; skip a moved subtree while what it was moved
+for holds).
 The names below are imported on first use (PEP 562): planning needs neither the
 online loop nor its agents.
 """

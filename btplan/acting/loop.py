@@ -107,7 +107,9 @@ class BlendedLoop:
         scope_moves: bool = False,
     ) -> None:
         """`like`: an index of the same task to share models with; `look_ahead`: also
-        expand, in the same tick, the later preconditions that are false (btplan.acting.ahead);
+        expand, in the same tick, the later preconditions that are false (btplan.acting.ahead),
+        and the conditions ahead of the running action that an outside change broke
+        (btplan.acting.watch);
         `banned`: (condition, action) choices never used (btplan.planner.backjump);
         `scope_moves`: skip a moved subtree while what it was moved for holds
         (btplan.acting.scope)."""

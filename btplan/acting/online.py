@@ -242,7 +242,9 @@ def run(
     (`PlannerOptions.paper()` for the published algorithms); `stop` is asked before
     each tick whether to end the run there (see `run_task`); `world_name` is how
     messages call the world ("the PyBullet world"); `look_ahead` expands the later
-    false preconditions of an action with the first (btplan.acting.ahead); `scope_moves`
+    false preconditions of an action with the first (btplan.acting.ahead), and a
+    condition ahead of the running action as soon as an agent breaks it
+    (btplan.acting.watch); `scope_moves`
     skips a subtree moved out of an achiever while that achiever's condition holds
     (btplan.acting.scope); `models`
     are the task's models built beforehand (`task_models`), so that their cost can
