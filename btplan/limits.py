@@ -12,7 +12,7 @@ from __future__ import annotations
 import operator
 import re
 from collections.abc import Iterator
-from dataclasses import dataclass
+from btplan.records import record
 from itertools import accumulate, repeat, takewhile
 
 from btplan.errors import EXCERPT_WIDTH, InputError, Span, excerpt
@@ -105,7 +105,7 @@ def check_size(size: int, path: str) -> None:
         )
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Brackets:
     """What counts as nesting in one language: its brackets, and the text to skip.
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import time
 from collections import Counter
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from btplan.records import record, field
 
 from btplan.acting.ahead import attached, later_false
 from btplan.acting.scope import lineage, scope_moved
@@ -84,7 +84,7 @@ def _unexpand(tree: BehaviorTree, subtree: Fallback, condition: Node) -> None:
     parent.replace(subtree, condition)
 
 
-@dataclass
+@record
 class Expansion:
     """One run of ExpandTree: which condition, by which actions, and how it was placed."""
 
@@ -95,7 +95,7 @@ class Expansion:
     moves: int
 
 
-@dataclass
+@record
 class TickReport:
     tick: int
     status: Status
@@ -104,7 +104,7 @@ class TickReport:
     """CPU time (process time) spent growing the tree in this tick, the tick itself excluded."""
 
 
-@dataclass
+@record
 class RunResult:
     reached: bool
     ticks: int

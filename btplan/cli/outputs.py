@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import os
 import sys
-from dataclasses import dataclass
+from btplan.records import record
 from pathlib import Path
 from types import TracebackType
 from typing import Self
@@ -27,7 +27,7 @@ from btplan.io import STDIO, write_atomic
 __all__ = ["STDIO", "LineStream", "Output", "check_outputs", "write_atomic"]
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Output:
     """One output of a command: the flag that names it, the path given (None: not asked for)."""
 

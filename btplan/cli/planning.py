@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import sys
 import time
-from dataclasses import replace
+from btplan.records import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 

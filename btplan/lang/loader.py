@@ -8,7 +8,7 @@ problems live in files of their own.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from btplan.records import record
 from pathlib import Path
 
 from btplan.errors import InputError, Span
@@ -22,7 +22,7 @@ from btplan.model import ROOT_TYPE, Domain, Problem, Task, TypedName
 PDDL_SUFFIXES = (".pddl",)
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class BtFile:
     """What one .bt text holds: at most one domain, and any number of problems.
 
@@ -40,7 +40,7 @@ class BtFile:
         return tuple(build_problem(p, domain) for p in self.problem_syntax)
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Collection:
     """Every domain and every problem of a set of inputs, each problem checked."""
 

@@ -21,7 +21,7 @@ also not break what now follows it:
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from btplan.records import record
 
 from btplan.bt import Action, Fallback, LeafKey, Node
 from btplan.bt import Sequence as SequenceNode
@@ -33,7 +33,7 @@ from btplan.planner.mutex import Mutexes
 Grounding = Mapping[LeafKey, GroundAction]
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Conflict:
     """Why a place is bad: an effect that breaks a condition, or two exclusive conditions."""
 
@@ -45,7 +45,7 @@ class Conflict:
         return f"{self.cause} {self.condition} ({self.rule})"
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Judge:
     """What conflict checks know: the grounded actions of the tree and, if built, mutexes.
 

@@ -22,7 +22,7 @@ reordered.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from btplan.records import record
 
 from btplan.bt import BehaviorTree, Composite, Fallback, Node
 from btplan.bt import Sequence as SequenceNode
@@ -41,7 +41,7 @@ Slot = tuple[Composite, int]
 Undo = Callable[[], None]
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Resolution:
     """What conflict resolution did: the conflicts found first and the moves made."""
 
