@@ -16,6 +16,7 @@ This module imports nothing from btplan: every layer may build its records with 
 from __future__ import annotations
 
 from collections.abc import Callable
+from operator import attrgetter
 from typing import Any, TypeVar, dataclass_transform, overload
 
 T = TypeVar("T")
@@ -88,6 +89,12 @@ def build(cls: type[T], *, frozen: bool, slots: bool, kw_only: bool) -> type[T]:
     namespace.update(
         __record_fields__=tuple(names), __record_defaults__=defaults,
         __record_kw_only__=kw_only, __match_args__=() if kw_only else tuple(names),
+        __record_values__=_getter(names), __record_required__=frozenset(
+            n for n in names if n not in defaults),
+        __record_start__={n: defaults.get(n, _MISSING) for n in names},
+        __record_post__=getattr(cls, "__post_init__", None),
+        __record_in_dict__=frozen and not slots and not any(
+            isinstance(d, Field) for d in defaults.values()),
         __init__=_init, __repr__=_repr, __eq__=_eq, __dataclass_fields__=_DataclassFields())
     if "__hash__" not in cls.__dict__ or namespace["__hash__"] is None:
         namespace["__hash__"] = _hash if frozen else None
@@ -114,9 +121,29 @@ def _init(self: Any, *args: Any, **kwargs: Any) -> None:
     """The generated `__init__` of `dataclasses`, for every record alike."""
     cls = type(self)
     names: tuple[str, ...] = cls.__record_fields__
+    if not kwargs and len(args) == len(names) and not cls.__record_kw_only__:
+        for name, value in zip(names, args):  # every field given in order: the common case
+            _set(self, name, value)
+    elif not args and cls.__record_in_dict__ and cls.__record_required__ <= kwargs.keys():
+        values = dict(cls.__record_start__)  # a frozen model by keyword: set in one go
+        values.update(kwargs)
+        if len(values) != len(names):
+            _bind(self, cls, names, args, kwargs)  # an unknown keyword: refused there
+        self.__dict__.update(values)
+    else:
+        _bind(self, cls, names, args, kwargs)
+    post = cls.__record_post__  # looked up when the class was made: a subclass is made too
+    if post is not None:
+        post(self)
+
+
+def _bind(self: Any, cls: type, names: tuple[str, ...], args: tuple[Any, ...],
+          kwargs: dict[str, Any]) -> None:
+    """Fields given by keyword or left to their defaults, refused as Python refuses them."""
     if args:
-        if cls.__record_kw_only__ or len(args) > len(names):
-            most = 1 + (0 if cls.__record_kw_only__ else len(names))
+        kw_only: bool = cls.__record_kw_only__  # type: ignore[attr-defined]
+        if kw_only or len(args) > len(names):
+            most = 1 + (0 if kw_only else len(names))
             raise TypeError(f"{cls.__qualname__}.__init__() takes {most} positional arguments"
                             f" but {1 + len(args)} were given")
         for name, value in zip(names, args):
@@ -124,7 +151,7 @@ def _init(self: Any, *args: Any, **kwargs: Any) -> None:
                 raise TypeError(f"{cls.__qualname__}.__init__() got multiple values for "
                                 f"argument {name!r}")
             kwargs[name] = value
-    defaults: dict[str, Any] = cls.__record_defaults__
+    defaults: dict[str, Any] = cls.__record_defaults__  # type: ignore[attr-defined]
     for name in names:
         value = kwargs.pop(name, _MISSING)
         if value is _MISSING:
@@ -138,13 +165,21 @@ def _init(self: Any, *args: Any, **kwargs: Any) -> None:
     if kwargs:
         raise TypeError(f"{cls.__qualname__}.__init__() got an unexpected keyword argument "
                         f"{next(iter(kwargs))!r}")
-    post = getattr(cls, "__post_init__", None)
-    if post is not None:
-        post(self)
 
 
 def _values(self: Any) -> tuple[Any, ...]:
-    return tuple([getattr(self, name) for name in self.__record_fields__])
+    values: tuple[Any, ...] = type(self).__record_values__(self)
+    return values
+
+
+def _getter(names: list[str]) -> Callable[[Any], tuple[Any, ...]]:
+    """The fields' values as a tuple, read in C: what equality and hashing compare."""
+    if len(names) >= 2:
+        return attrgetter(*names)
+    if names:
+        only = attrgetter(names[0])
+        return lambda record: (only(record),)
+    return lambda record: ()
 
 
 _repr_running: set[tuple[int, int]] = set()
@@ -164,12 +199,13 @@ def _repr(self: Any) -> str:
 
 def _eq(self: Any, other: Any) -> Any:
     if other.__class__ is self.__class__:
-        return _values(self) == _values(other)
+        values = self.__class__.__record_values__
+        return values(self) == values(other)
     return NotImplemented
 
 
 def _hash(self: Any) -> int:
-    return hash(_values(self))
+    return hash(type(self).__record_values__(self))
 
 
 def _frozen_setattr(self: Any, name: str, value: Any) -> None:
