@@ -112,8 +112,8 @@ def build(cls: type[T], *, frozen: bool, slots: bool, kw_only: bool) -> type[T]:
     for name, value in namespace.items():
         if name not in cls.__dict__ or cls.__dict__[name] is not value:
             type.__setattr__(cls, name, value)
-    for name in [n for n, d in defaults.items() if isinstance(d, Field)]:
-        type.__delattr__(cls, name)
+    for name in [n for n, d in defaults.items() if isinstance(d, Field) and n in cls.__dict__]:
+        type.__delattr__(cls, name)  # as dataclasses leaves no class attribute for a factory
     return cls
 
 

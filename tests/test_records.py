@@ -106,6 +106,20 @@ def test_frozen_slotted_records_pickle_and_copy() -> None:
     assert not hasattr(span, "__dict__")
 
 
+def test_a_subclass_inherits_fields_and_defaults_alike() -> None:
+    dc, rec = both()
+    made = []
+    for decorate, base in ((dataclasses.dataclass, dc), (records.record, rec)):
+        class Labelled(base):  # type: ignore[valid-type, misc]
+            label: str = "p"
+
+        made.append(decorate(Labelled))
+    a, b = made[0](x=1), made[1](x=1)
+    assert repr(a).replace("Labelled", "") == repr(b).replace("Labelled", "")
+    assert [f.name for f in dataclasses.fields(b)] == ["x", "y", "tags", "label"]
+    assert b.tags == [] and b.tags is not made[1](x=1).tags
+
+
 def test_a_default_before_a_required_field_is_refused_alike() -> None:
     for decorate in (dataclasses.dataclass, records.record):
         with pytest.raises(TypeError, match="non-default argument 'y' follows default"):
