@@ -5,7 +5,7 @@ This module imports nothing else from btplan, so every layer may use it.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from btplan.records import record
 
 EXCERPT_WIDTH = 100
 """Characters of the offending line shown around the caret; a one-line file of 30 KB
@@ -32,7 +32,7 @@ def excerpt(line: str, column: int, width: int = EXCERPT_WIDTH) -> tuple[str, in
 
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Span:
     """A place in an input: 1-based line and column, as editors count."""
 

@@ -12,10 +12,10 @@ from __future__ import annotations
 import operator
 import re
 from collections.abc import Iterator
-from dataclasses import dataclass
 from itertools import accumulate, repeat, takewhile
 
 from btplan.errors import EXCERPT_WIDTH, InputError, Span, excerpt
+from btplan.records import record
 
 MAX_INPUT_BYTES = 8 * 1024 * 1024
 """Largest input file read, in bytes (8 MiB).
@@ -105,7 +105,7 @@ def check_size(size: int, path: str) -> None:
         )
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Brackets:
     """What counts as nesting in one language: its brackets, and the text to skip.
 

@@ -5,16 +5,17 @@ downstream works on either. They are frozen so that a parsed domain can be share
 and cached safely. Grounded atoms are plain named tuples: the planner and the
 worlds hash and compare millions of them, and a tuple does that at C speed.
 
-This module imports nothing else from btplan.
+This module imports nothing else from btplan but its record classes (btplan/records.py).
 """
 
 from __future__ import annotations
 
 import math
-import dataclasses
 from collections.abc import Iterable, Mapping
 from functools import cached_property
-from typing import Any, NamedTuple, Self, cast, dataclass_transform
+from typing import Any, NamedTuple, Self, dataclass_transform
+
+from btplan.records import build, replace
 
 ROOT_TYPE = "object"
 """Every type without a declared parent derives from this one."""
@@ -30,16 +31,17 @@ WILDCARD = "_"
 class Frozen:
     """Base of the models: immutable, built by keyword, strict about unknown fields.
 
-    Plain frozen dataclasses rather than a validation library: the readers check their
+    Plain frozen records rather than a validation library: the readers check their
     input before they build a model, and importing and building validated models cost
     more than a whole small planning run (`btplan plan` starts in a fraction of a second).
-    Every subclass becomes a keyword-only frozen dataclass; lists given for tuple fields
+    Every subclass becomes a keyword-only frozen record, a dataclass without the cost of
+    compiling its methods at import (btplan/records.py); lists given for tuple fields
     are stored as tuples so that models stay hashable.
     """
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
-        dataclasses.dataclass(frozen=True, kw_only=True)(cls)
+        build(cls, frozen=True, slots=False, kw_only=True)
 
     def __post_init__(self) -> None:
         for name, value in vars(self).items():
@@ -48,7 +50,7 @@ class Frozen:
 
     def model_copy(self, *, update: Mapping[str, Any] | None = None) -> Self:
         """A new model with some fields changed (cached properties are recomputed)."""
-        return cast(Self, dataclasses.replace(cast(Any, self), **(update or {})))
+        return replace(self, **(update or {}))
 
 
 class TypeDef(Frozen):

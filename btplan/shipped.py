@@ -8,12 +8,13 @@ domains/ folder) and a bare name that is not a file is looked up among them.
 from __future__ import annotations
 
 import os
-from importlib import resources
 from pathlib import Path
 
 
 def folder() -> Path:
     """Where the shipped domains are (the checkout's domains/ in an editable install)."""
+    from importlib import resources  # here: `btplan plan FILE` starts without it
+
     return Path(str(resources.files("btplan.domains")))
 
 

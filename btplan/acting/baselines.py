@@ -22,7 +22,6 @@ from __future__ import annotations
 import itertools
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Any
 
 from btplan.bt import FAILURE, RUNNING, SUCCESS
@@ -36,6 +35,7 @@ from btplan.model import (
     Task,
     instantiate,
 )
+from btplan.records import record
 from btplan.worlds.agents import Agent, act_all
 
 BASELINES = ("replan", "repair", "replan-unlimited")
@@ -183,7 +183,7 @@ def _breaks(action: GroundAction, negative: GroundLiteral) -> bool:
     return negative.atom in action.add
 
 
-@dataclass(slots=True)
+@record(slots=True)
 class BaselineOutcome:
     """What a baseline run did; the same measures the sweep takes from the blended loop."""
 

@@ -51,11 +51,11 @@ from btplan.planner import (
     resolve_conflicts,
 )
 from btplan.planner.achievers import guards
+from btplan.planner.agenda import goal_agenda
 from btplan.planner.backjump import Choice, conflict_choices, enclosing_choices, running_choices
 from btplan.planner.expand import condition_node, goal_check, guard_nodes
 from btplan.planner.lookahead import closest_first
 from btplan.planner.protect import white_knights
-from btplan.planner.agenda import goal_agenda
 from btplan.planner.rescue import Rescuer
 
 __all__ = ["BlendedLoop", "Expansion", "RunResult", "TickReport"]

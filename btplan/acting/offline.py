@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from btplan.acting.loop import BlendedLoop, Expansion, TickReport
@@ -23,6 +22,7 @@ from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex, PlannerOptions
 from btplan.planner.backjump import Choice
+from btplan.records import field, record, replace
 from btplan.worlds.symbolic import SymbolicWorld
 
 if TYPE_CHECKING:
@@ -50,7 +50,7 @@ def load(*paths: str, problem: str | None = None) -> Task:
     return load_paths(list(paths), problem)
 
 
-@dataclass
+@record
 class PlanStats:
     expansions: int
     conflicts_resolved: int
@@ -71,7 +71,7 @@ class PlanStats:
     """Whether the tree is the last resort's: a searched plan for the whole goal."""
 
 
-@dataclass
+@record
 class PlanResult:
     """The final tree, the actions its last run executed, and what planning cost."""
 
@@ -136,7 +136,7 @@ def plan(
         return _whole_goal(run, opts, error)
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class _Run:
     """What every attempt of one `plan` call shares: the task, its limits, its callbacks."""
 

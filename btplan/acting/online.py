@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
 from typing import Any
 
 from btplan.acting.loop import BlendedLoop, Expansion, TickReport
@@ -20,6 +19,7 @@ from btplan.bt.trace import TickRecorder
 from btplan.errors import PlanningError
 from btplan.model import Atom, GroundAction, Task
 from btplan.planner import AchieverIndex, PlannerOptions
+from btplan.records import field, record
 from btplan.worlds.agents import Agent, act_all, agents_from_specs, check_world
 from btplan.worlds.disturb import DisturbSpec, check_specs, parse_spec
 from btplan.worlds.symbolic import SymbolicWorld
@@ -40,7 +40,7 @@ Problem 1 asks. Nearest-first reaches a long plan in far fewer expansions, which
 offline planning (`plan`) needs, but it leaves those alternatives unexpanded."""
 
 
-@dataclass(slots=True)
+@record(slots=True)
 class RunOutcome:
     """How a run ended, and everything that happened on the way (one record per tick)."""
 

@@ -10,14 +10,14 @@ from __future__ import annotations
 
 import json
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, field
 from typing import Any
 
 from btplan.bt.trace import NodeTick
+from btplan.records import field, record
 from btplan.worlds.agents import Disturbance
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class ExpansionNote:
     """One expansion of the tree (Algorithm 1, lines 9-12), in words a reader can check."""
 
@@ -31,7 +31,7 @@ class ExpansionNote:
                 "conflicts_resolved": self.conflicts_resolved, "moves": self.moves}
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class TickRecord:
     """One tick: the agents' disturbances before it, the tree's tick, the world's answer.
 
@@ -83,7 +83,7 @@ def records_to_jsonl(records: Iterable[TickRecord]) -> str:
     return "".join(r.to_json() + "\n" for r in records)
 
 
-@dataclass(slots=True)
+@record(slots=True)
 class RunSummary:
     """Totals over a run's records, for the final summary and for assertions in tests."""
 

@@ -8,7 +8,6 @@ see the loop through `LoopState`, so that none of them imports the loop itself.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Protocol
 
 from btplan.bt import BehaviorTree, LeafKey, Node, Status
@@ -16,9 +15,10 @@ from btplan.model import GroundAction, GroundLiteral, Task
 from btplan.planner import AchieverIndex, Judge, PlannerOptions, PlanningWorld
 from btplan.planner.backjump import Choice
 from btplan.planner.rescue import Rescuer
+from btplan.records import field, record
 
 
-@dataclass
+@record
 class Expansion:
     """One run of ExpandTree: which condition, by which actions, and how it was placed."""
 
@@ -29,7 +29,7 @@ class Expansion:
     moves: int
 
 
-@dataclass
+@record
 class TickReport:
     tick: int
     status: Status
@@ -41,7 +41,7 @@ class TickReport:
     those the tick itself checked: monitoring, not planning."""
 
 
-@dataclass
+@record
 class RunResult:
     reached: bool
     ticks: int

@@ -17,13 +17,13 @@ from __future__ import annotations
 import json
 from collections import deque
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, TextIO
 
 from btplan.bt.node import Node
 from btplan.bt.status import RUNNING, Status
 from btplan.bt.world import LeafKey, World
 from btplan.io import write_atomic
+from btplan.records import record
 
 if TYPE_CHECKING:
     from btplan.bt.tree import BehaviorTree
@@ -34,7 +34,7 @@ def node_ids(root: Node) -> dict[int, str]:
     return {id(node): f"n{i}" for i, node in enumerate(root.walk())}
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class NodeTick:
     """One node reached by one tick, in the order the tick reached it."""
 
@@ -44,7 +44,7 @@ class NodeTick:
     status: Status
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class TickTrace:
     """What one tick of the whole tree did; `started`/`halted` hold action node ids."""
 

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import os
 import sys
-import traceback
 from contextvars import ContextVar
 
 from btplan.cli.console import LazyConsole, escape
@@ -83,6 +82,8 @@ def debugging() -> bool:
 def report_bug(error: BaseException) -> None:
     """One line for an unexpected exception; the traceback only when debugging."""
     if debugging():
+        import traceback  # not imported at start: only --debug prints one
+
         stderr.print(escape("".join(traceback.format_exception(error))), end="")
     where = "" if debugging() else f" (run again with --debug or {DEBUG_ENV}=1 for details)"
     stderr.print(f"[bold red]internal error:[/] {escape(type(error).__name__)}: "

@@ -16,18 +16,18 @@ from __future__ import annotations
 
 import os
 import sys
-from dataclasses import dataclass
 from pathlib import Path
 from types import TracebackType
 from typing import Self
 
 from btplan.errors import InputError
 from btplan.io import STDIO, write_atomic
+from btplan.records import record
 
 __all__ = ["STDIO", "LineStream", "Output", "check_outputs", "write_atomic"]
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Output:
     """One output of a command: the flag that names it, the path given (None: not asked for)."""
 

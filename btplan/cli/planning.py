@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import sys
 import time
-from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -17,6 +16,7 @@ from btplan.cli.edge import CommandExit, stderr
 from btplan.cli.interrupts import Interrupts
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Interrupted
+from btplan.records import replace
 
 if TYPE_CHECKING:
     from btplan.acting.loop import Expansion

@@ -7,7 +7,6 @@ Lark reports terminal names (`RBRACE`, `__ANON_3`); a user wants to read "expect
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from difflib import get_close_matches
 
 from lark import Lark, Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
@@ -61,6 +60,8 @@ def _hint(token: Token, expected: list[str]) -> str | None:
     if not text[:1].isalpha():
         return None
     keywords = [e.strip("'") for e in expected if e.startswith("'") and e[1:2].isalpha()]
+    from difflib import get_close_matches  # only a mistake needs it: not imported at start
+
     near = get_close_matches(text, sorted(keywords), n=1)
     if near:
         return f"did you mean '{near[0]}'?"

@@ -8,7 +8,6 @@ problems live in files of their own.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 from pathlib import Path
 
 from btplan.errors import InputError, Span
@@ -18,11 +17,12 @@ from btplan.lang.report import Report
 from btplan.lang.syntax import DomainSyntax, ProblemSyntax
 from btplan.lang.validate import build_domain, build_problem
 from btplan.model import ROOT_TYPE, Domain, Problem, Task, TypedName
+from btplan.records import record
 
 PDDL_SUFFIXES = (".pddl",)
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class BtFile:
     """What one .bt text holds: at most one domain, and any number of problems.
 
@@ -40,7 +40,7 @@ class BtFile:
         return tuple(build_problem(p, domain) for p in self.problem_syntax)
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Collection:
     """Every domain and every problem of a set of inputs, each problem checked."""
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
-from difflib import get_close_matches
 
 from btplan.lang.report import Report
 from btplan.lang.syntax import Name
@@ -11,6 +10,8 @@ from btplan.lang.syntax import Name
 
 def suggest(name: str, known: Iterable[str]) -> str | None:
     """A "did you mean" hint from the closest known name; sorted so runs agree."""
+    from difflib import get_close_matches  # only a mistake needs it: not imported at start
+
     near = get_close_matches(name, sorted(known), n=1)
     return f"did you mean '{near[0]}'?" if near else None
 

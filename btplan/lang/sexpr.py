@@ -13,12 +13,12 @@ and located as before (btplan/lang/diagnostics.py).
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 from functools import cache
 from typing import TYPE_CHECKING
 
 from btplan.lang.syntax import Source, Where
 from btplan.limits import MAX_NESTING, PDDL_BRACKETS, check_nesting, check_size
+from btplan.records import record
 
 if TYPE_CHECKING:
     from lark import Lark, Token, Transformer_NonRecursive
@@ -32,7 +32,7 @@ WORDS = {
 }
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Word:
     """A token of the s-expression: a name, a variable, a keyword or a symbol."""
 
@@ -41,7 +41,7 @@ class Word:
     at: Where
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Group:
     """A parenthesised list; `at` is its opening parenthesis."""
 

@@ -7,13 +7,12 @@ validation turns them into models while it can still point at the offending text
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from btplan.errors import InputError, Span
 from btplan.model import EQUALITY, Literal
+from btplan.records import record
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Where:
     """A place in a source text, with the text of its line for the caret display."""
 
@@ -24,7 +23,7 @@ class Where:
         return InputError(message, self.span, hint, self.line_text)
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Name:
     """An identifier as written, with its place."""
 
@@ -32,13 +31,13 @@ class Name:
     at: Where
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Number:
     text: str
     at: Where
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class TypedSyntax:
     """One entry of a types, constants or objects list: `name : type`, type optional."""
 
@@ -46,20 +45,20 @@ class TypedSyntax:
     type: Name | None
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class ParameterSyntax:
     name: Name
     type: Name | None
     refined: bool = False
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class PredicateSyntax:
     name: Name
     parameters: tuple[ParameterSyntax, ...]
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class LiteralSyntax:
     """A literal; `predicate` is "=" for equalities, whose `at` is the left operand."""
 
@@ -80,7 +79,7 @@ class LiteralSyntax:
         )
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class ActionSyntax:
     name: Name
     parameters: tuple[ParameterSyntax, ...]
@@ -93,7 +92,7 @@ class ActionSyntax:
     """A cost read from a static function, PDDL's `(increase (total-cost) (f ?x))`."""
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class DomainSyntax:
     name: Name
     requirements: tuple[Name, ...] = ()
@@ -105,7 +104,7 @@ class DomainSyntax:
     """Static numeric functions that action costs read (PDDL's `:action-costs`)."""
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class ProblemSyntax:
     name: Name
     domain: Name

@@ -22,7 +22,6 @@ from btplan.lang.syntax import (
     TypedSyntax,
 )
 from btplan.lang.types import TypeTable
-from btplan.lang.writers import bt_literal, pddl_literal
 from btplan.model import (
     EQUALITY,
     ROOT_TYPE,
@@ -190,6 +189,14 @@ def _duration(number: Number | None) -> int:
     return int(number.text)
 
 
+def _written(literal: Literal) -> str:
+    """The literal as btplan's language writes it. Only messages need the writers, so
+    they are imported here: a well-formed `btplan plan` starts without them."""
+    from btplan.lang.writers import bt_literal
+
+    return bt_literal(literal)
+
+
 def _check_contradictions(literals: tuple[LiteralSyntax, ...], what: str, why: str) -> None:
     seen: dict[tuple[str, tuple[str, ...]], LiteralSyntax] = {}
     for lit in literals:
@@ -198,7 +205,7 @@ def _check_contradictions(literals: tuple[LiteralSyntax, ...], what: str, why: s
         if other is not None and other.positive != lit.positive:
             raise lit.at.error(
                 f"contradictory {what}: "
-                f"'{bt_literal(other.literal())}' and '{bt_literal(lit.literal())}'",
+                f"'{_written(other.literal())}' and '{_written(lit.literal())}'",
                 why,
             )
         seen[key] = lit
@@ -224,8 +231,10 @@ class _LiteralChecker:
 
     def _shown(self, literal: Literal) -> str:
         if self.pddl:
+            from btplan.lang.writers import pddl_literal
+
             return pddl_literal(literal, frozenset(set(self.scope) - self.constants))
-        return bt_literal(literal)
+        return _written(literal)
 
     def _variable(self, name: str) -> str:
         return f"?{name}" if self.pddl and name in self.scope and name not in self.constants \
@@ -387,7 +396,7 @@ def _warn_unreachable(
         if holds != lit.positive:
             report.warn(
                 lit.at.error(
-                    f"the goal '{bt_literal(lit.literal())}' can never hold",
+                    f"the goal '{_written(lit.literal())}' can never hold",
                     f"no action changes '{name}', and it is "
                     f"{'false' if lit.positive else 'true'} initially",
                 )

@@ -21,7 +21,6 @@ also not break what now follows it:
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
 
 from btplan.bt import Action, Fallback, LeafKey, Node
 from btplan.bt import Sequence as SequenceNode
@@ -29,11 +28,12 @@ from btplan.model import Atom, GroundAction, GroundLiteral
 from btplan.planner.expand import literal_of
 from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
+from btplan.records import record
 
 Grounding = Mapping[LeafKey, GroundAction]
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Conflict:
     """Why a place is bad: an effect that breaks a condition, or two exclusive conditions."""
 
@@ -45,7 +45,7 @@ class Conflict:
         return f"{self.cause} {self.condition} ({self.rule})"
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Judge:
     """What conflict checks know: the grounded actions of the tree and, if built, mutexes.
 

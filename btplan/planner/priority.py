@@ -22,7 +22,6 @@ reordered.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 
 from btplan.bt import BehaviorTree, Composite, Fallback, Node
 from btplan.bt import Sequence as SequenceNode
@@ -36,12 +35,13 @@ from btplan.planner.conflicts import (
     placement_conflicts,
 )
 from btplan.planner.expand import condition_copy, literal_of
+from btplan.records import record
 
 Slot = tuple[Composite, int]
 Undo = Callable[[], None]
 
 
-@dataclass(frozen=True, slots=True)
+@record(frozen=True, slots=True)
 class Resolution:
     """What conflict resolution did: the conflicts found first and the moves made."""
 

@@ -10,8 +10,8 @@ to exercise the reactivity the paper's Problem 1 asks for.
 
 from __future__ import annotations
 
-import random
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 from btplan.bt import FAILURE, RUNNING, SUCCESS, LeafKey, Status
 from btplan.errors import WorldError
@@ -27,6 +27,9 @@ from btplan.model import (
     instantiate,
     matches,
 )
+
+if TYPE_CHECKING:
+    from random import Random
 
 
 class SymbolicWorld:
@@ -46,7 +49,8 @@ class SymbolicWorld:
     ) -> None:
         self.task = task
         self._state: set[Atom] = set(task.initial_state)
-        self._rng = random.Random(seed)
+        self._seed = seed
+        self._rng: Random | None = None  # made at the first draw (see _draw)
         self._failure_probability = dict(failure_probability or {})
         self._templates = task.domain.action_map
         # Worlds of one task may share their groundings (offline planning starts many).
@@ -123,13 +127,22 @@ class SymbolicWorld:
         if self._remaining.pop(key, None) is not None:
             self.halted.append(self.ground(key))
 
+    def _draw(self) -> float:
+        """The next number of the seeded generator, made on first use: worlds without
+        failure probabilities (all of offline planning) never import `random`."""
+        if self._rng is None:
+            from random import Random
+
+            self._rng = Random(self._seed)
+        return self._rng.random()
+
     def _advance(self, key: LeafKey, action: GroundAction) -> Status:
         """One tick of a running action: fail, keep running, or finish and apply effects."""
         if (self._take_injected_failure(action) or not action.applicable(self._state)
                 or self._stale(action)):
             return self._fail(key, action)
         probability = self._failure_probability.get(action.name, 0.0)
-        if probability > 0.0 and self._rng.random() < probability:
+        if probability > 0.0 and self._draw() < probability:
             return self._fail(key, action)
         left = self._remaining[key] - 1
         if left > 0:

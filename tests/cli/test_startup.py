@@ -18,10 +18,17 @@ from btplan.lang.generators import generate
 HEAVY = ("rich", "pydantic", "pybullet", "numpy", "matplotlib", "email", "importlib.metadata",
          "lark", "btplan.lang.bt_reader", "btplan.acting.online", "btplan.worlds.disturb",
          "btplan.bt.formats.btcpp", "btplan.bt.formats.saved", "btplan.acting.live_view",
-         "btplan.sweep", "btplan.worlds.pybullet", "typer", "click")
+         "btplan.sweep", "btplan.worlds.pybullet", "typer", "click",
+         "dataclasses", "inspect", "tempfile", "difflib", "traceback", "importlib.resources",
+         "random", "btplan.lang.writers")
 """Modules (and their submodules) that neither start-up nor `btplan plan` of well-formed
 PDDL needs (lark builds parsers: it reads .bt files and words PDDL syntax errors; typer
-builds the command line for help, errors and the other commands, cli/lean.py)."""
+builds the command line for help, errors and the other commands, cli/lean.py). The
+standard library's share: dataclasses (and inspect beneath it) compile every class's
+methods at import, which btplan/records.py avoids; tempfile, difflib (for "did you
+mean"), traceback (for --debug) and importlib.resources (for shipped domains by name)
+serve only other paths, random only worlds that fail actions on purpose, and btplan's
+writers only messages about mistakes."""
 
 REPORT = """
 import json, sys

@@ -1,0 +1,262 @@
+"""Plain record classes, as `dataclasses.dataclass` makes them, without its start-up cost.
+
+`btplan plan` is measured as a whole process beside other planners, and on a small
+problem it spends more time starting than planning. `dataclasses` writes every method
+of every class as source text and compiles it when the module is imported (about 1 ms
+a frozen class, 40 classes on the planning path), and it imports `inspect` to do so.
+`record` builds the same kind of class from a few shared methods instead, which the
+interpreter loads compiled: the same fields, defaults and `field(default_factory=...)`,
+the same `__init__` (positional or keyword-only), `__repr__`, `__eq__`, `__hash__`,
+frozen and slotted classes, and `replace`. `dataclasses.fields`, `replace` and `asdict`
+take records too. `tests/test_records.py` checks the two agree.
+
+This module imports nothing from btplan: every layer may build its records with it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from operator import attrgetter
+from typing import Any, TypeVar, dataclass_transform, overload
+
+T = TypeVar("T")
+
+_MISSING: Any = object()
+_set = object.__setattr__
+
+
+class Field:
+    """A field's default made by a factory on every construction: `field(default_factory=list)`."""
+
+    __slots__ = ("default_factory",)
+
+    def __init__(self, default_factory: Callable[[], Any]) -> None:
+        self.default_factory = default_factory
+
+
+def field(*, default_factory: Callable[[], T]) -> T:
+    """A default built afresh for every record, as `dataclasses.field(default_factory=...)`."""
+    made: T = Field(default_factory)  # type: ignore[assignment]  # as dataclasses types it
+    return made
+
+
+@overload
+def record(cls: type[T], /) -> type[T]: ...
+
+
+@overload
+def record(*, frozen: bool = False, slots: bool = False,
+           kw_only: bool = False) -> Callable[[type[T]], type[T]]: ...
+
+
+@dataclass_transform(field_specifiers=(field,))
+def record(cls: type[T] | None = None, /, *, frozen: bool = False, slots: bool = False,
+           kw_only: bool = False) -> Any:
+    """The class made a record of the fields its annotations declare, in their order."""
+
+    def wrap(target: type[T]) -> type[T]:
+        return build(target, frozen=frozen, slots=slots, kw_only=kw_only)
+
+    return wrap if cls is None else wrap(cls)
+
+
+def build(cls: type[T], *, frozen: bool, slots: bool, kw_only: bool) -> type[T]:
+    """What `record` does; the model's base class calls it for every subclass."""
+    names: list[str] = []
+    defaults: dict[str, Any] = {}
+    for base in reversed(cls.__mro__[1:]):
+        inherited = base.__dict__.get("__record_fields__")
+        if inherited is not None:
+            names.extend(n for n in inherited if n not in names)
+            defaults.update(base.__dict__["__record_defaults__"])
+    for name, annotation in cls.__dict__.get("__annotations__", {}).items():
+        if str(annotation).startswith(("ClassVar", "typing.ClassVar")):
+            continue
+        if name not in names:
+            names.append(name)
+        if name in cls.__dict__:
+            defaults[name] = cls.__dict__[name]
+        else:
+            defaults.pop(name, None)
+    if not kw_only:
+        for before, after in zip(names, names[1:]):
+            if before in defaults and after not in defaults:
+                raise TypeError(f"non-default argument {after!r} follows default argument")
+    namespace = dict(cls.__dict__)
+    for name, default in defaults.items():
+        if isinstance(default, Field) or (slots and name in namespace):
+            namespace.pop(name, None)
+    namespace.update(
+        __record_fields__=tuple(names), __record_defaults__=defaults,
+        __record_kw_only__=kw_only, __match_args__=() if kw_only else tuple(names),
+        __record_values__=_getter(names), __record_required__=frozenset(
+            n for n in names if n not in defaults),
+        __record_start__={n: defaults.get(n, _MISSING) for n in names},
+        __record_post__=getattr(cls, "__post_init__", None),
+        __record_in_dict__=frozen and not slots and not any(
+            isinstance(d, Field) for d in defaults.values()),
+        __init__=_init, __repr__=_repr, __eq__=_eq, __dataclass_fields__=_DataclassFields())
+    if "__hash__" not in cls.__dict__ or namespace["__hash__"] is None:
+        namespace["__hash__"] = _hash if frozen else None
+    if frozen:
+        namespace.update(__setattr__=_frozen_setattr, __delattr__=_frozen_delattr)
+    if slots:
+        namespace.pop("__dict__", None)
+        namespace.pop("__weakref__", None)
+        namespace["__slots__"] = tuple(names)
+        if frozen:  # unpickling and copying set slots through __setattr__ otherwise
+            namespace.update(__getstate__=_getstate, __setstate__=_setstate)
+        made: type[T] = type(cls)(cls.__name__, cls.__bases__, namespace)  # type: ignore[misc]
+        made.__qualname__ = cls.__qualname__
+        return made
+    for name, value in namespace.items():
+        if name not in cls.__dict__ or cls.__dict__[name] is not value:
+            type.__setattr__(cls, name, value)
+    for name in [n for n, d in defaults.items() if isinstance(d, Field) and n in cls.__dict__]:
+        type.__delattr__(cls, name)  # as dataclasses leaves no class attribute for a factory
+    return cls
+
+
+def _init(self: Any, *args: Any, **kwargs: Any) -> None:
+    """The generated `__init__` of `dataclasses`, for every record alike."""
+    cls = type(self)
+    names: tuple[str, ...] = cls.__record_fields__
+    if not kwargs and len(args) == len(names) and not cls.__record_kw_only__:
+        for name, value in zip(names, args):  # every field given in order: the common case
+            _set(self, name, value)
+    elif not args and cls.__record_in_dict__ and cls.__record_required__ <= kwargs.keys():
+        values = dict(cls.__record_start__)  # a frozen model by keyword: set in one go
+        values.update(kwargs)
+        if len(values) != len(names):
+            _bind(self, cls, names, args, kwargs)  # an unknown keyword: refused there
+        self.__dict__.update(values)
+    else:
+        _bind(self, cls, names, args, kwargs)
+    post = cls.__record_post__  # looked up when the class was made: a subclass is made too
+    if post is not None:
+        post(self)
+
+
+def _bind(self: Any, cls: type, names: tuple[str, ...], args: tuple[Any, ...],
+          kwargs: dict[str, Any]) -> None:
+    """Fields given by keyword or left to their defaults, refused as Python refuses them."""
+    if args:
+        kw_only: bool = cls.__record_kw_only__  # type: ignore[attr-defined]
+        if kw_only or len(args) > len(names):
+            most = 1 + (0 if kw_only else len(names))
+            raise TypeError(f"{cls.__qualname__}.__init__() takes {most} positional arguments"
+                            f" but {1 + len(args)} were given")
+        for name, value in zip(names, args):
+            if name in kwargs:
+                raise TypeError(f"{cls.__qualname__}.__init__() got multiple values for "
+                                f"argument {name!r}")
+            kwargs[name] = value
+    defaults: dict[str, Any] = cls.__record_defaults__  # type: ignore[attr-defined]
+    for name in names:
+        value = kwargs.pop(name, _MISSING)
+        if value is _MISSING:
+            value = defaults.get(name, _MISSING)
+            if value is _MISSING:
+                raise TypeError(f"{cls.__qualname__}.__init__() missing 1 required argument: "
+                                f"{name!r}")
+            if isinstance(value, Field):
+                value = value.default_factory()
+        _set(self, name, value)
+    if kwargs:
+        raise TypeError(f"{cls.__qualname__}.__init__() got an unexpected keyword argument "
+                        f"{next(iter(kwargs))!r}")
+
+
+def _values(self: Any) -> tuple[Any, ...]:
+    values: tuple[Any, ...] = type(self).__record_values__(self)
+    return values
+
+
+def _getter(names: list[str]) -> Callable[[Any], tuple[Any, ...]]:
+    """The fields' values as a tuple, read in C: what equality and hashing compare."""
+    if len(names) >= 2:
+        return attrgetter(*names)
+    if names:
+        only = attrgetter(names[0])
+        return lambda record: (only(record),)
+    return lambda record: ()
+
+
+_repr_running: set[tuple[int, int]] = set()
+
+
+def _repr(self: Any) -> str:
+    key = (id(self), id(type(self)))
+    if key in _repr_running:  # a record that holds itself, as reprlib.recursive_repr has it
+        return "..."
+    _repr_running.add(key)
+    try:
+        inner = ", ".join(f"{n}={getattr(self, n)!r}" for n in self.__record_fields__)
+    finally:
+        _repr_running.discard(key)
+    return f"{type(self).__qualname__}({inner})"
+
+
+def _eq(self: Any, other: Any) -> Any:
+    if other.__class__ is self.__class__:
+        values = self.__class__.__record_values__
+        return values(self) == values(other)
+    return NotImplemented
+
+
+def _hash(self: Any) -> int:
+    return hash(type(self).__record_values__(self))
+
+
+def _frozen_setattr(self: Any, name: str, value: Any) -> None:
+    from dataclasses import FrozenInstanceError
+
+    raise FrozenInstanceError(f"cannot assign to field {name!r}")
+
+
+def _frozen_delattr(self: Any, name: str) -> None:
+    from dataclasses import FrozenInstanceError
+
+    raise FrozenInstanceError(f"cannot delete field {name!r}")
+
+
+def _getstate(self: Any) -> list[Any]:
+    return list(_values(self))
+
+
+def _setstate(self: Any, state: list[Any]) -> None:
+    for name, value in zip(self.__record_fields__, state):
+        _set(self, name, value)
+
+
+def replace(obj: T, /, **changes: Any) -> T:
+    """A copy of the record with some fields changed, as `dataclasses.replace`."""
+    for name in obj.__record_fields__:  # type: ignore[attr-defined]
+        if name not in changes:
+            changes[name] = getattr(obj, name)
+    return type(obj)(**changes)
+
+
+class _DataclassFields:
+    """`__dataclass_fields__`, made on first use, so that `dataclasses.fields`, `replace`,
+    `asdict` and `is_dataclass` take records as the dataclasses they stand for."""
+
+    def __get__(self, instance: Any, owner: type) -> dict[str, Any]:
+        import dataclasses
+
+        made: dict[str, Any] = {}
+        defaults = owner.__record_defaults__  # type: ignore[attr-defined]
+        kw_only = owner.__record_kw_only__  # type: ignore[attr-defined]
+        for name in owner.__record_fields__:  # type: ignore[attr-defined]
+            default = defaults.get(name, dataclasses.MISSING)
+            if isinstance(default, Field):
+                one = dataclasses.field(default_factory=default.default_factory, kw_only=kw_only)
+            else:
+                one = dataclasses.field(default=default, kw_only=kw_only)
+            made[name] = one
+            one.name = name
+            one.type = next((vars(b)["__annotations__"][name] for b in owner.__mro__
+                             if name in vars(b).get("__annotations__", {})), None)
+            one._field_type = dataclasses._FIELD  # type: ignore[attr-defined]
+        type.__setattr__(owner, "__dataclass_fields__", made)
+        return made
