@@ -1,12 +1,21 @@
-"""The last resort for one stuck condition: a complete search, its plan made a subtree.
+"""The last resort: a complete search, for one stuck condition or for the whole goal.
 
 When backchaining finds no conflict-free place for the subtree achieving a condition,
 or every achiever of it is circular, the paper stops. btplan then searches, from the
 state the tree reached, for a plan that makes the condition true while keeping what
-the enclosing sequences already hold (greedy best-first search with h_FF, helpful
-actions first; Hoffmann and Nebel 2001), and btplan/planner/rescue.py turns that plan
-into a reactive subtree. The search sees every grounding of the relaxed model, so it is only
-bounded by its budget of states; it is the exception, and the summary counts it.
+the enclosing sequences already hold, and btplan/planner/rescue.py turns that plan
+into a reactive subtree; when backchaining fails as a whole, the same search plans the
+whole goal (btplan/acting/offline.py). The search sees every grounding of the relaxed
+model, so it is only bounded by its budget of states; it is the exception, and the
+summary counts it.
+
+The search is a satisficing planner's greedy best-first search (as in LAMA, Richter
+and Westphal 2010): deferred evaluation (a state is evaluated when taken from a queue,
+with its parent's estimate until then), two estimates (h_FF and the count of fact
+landmarks not yet reached on the path), and for each a second queue holding only the
+children of preferred actions (those of the relaxed plan that can run now); the
+queues take turns, and every time an estimate improves the preferred queues get
+BOOST turns ahead. States are ints (btplan/planner/packed.py).
 """
 
 from __future__ import annotations
@@ -14,107 +23,33 @@ from __future__ import annotations
 import heapq
 import itertools
 import time
-from collections import deque
 from collections.abc import Sequence
 
 from btplan.model import Atom, GroundAction, GroundLiteral
+from btplan.planner.packed import INFINITE, PackedActions, bits
 
 MAX_STATES = 2000
 """States expanded (each one h_FF evaluation) by one search before it gives up."""
 
+BOOST = 1000
+"""Turns the preferred queues get ahead each time an estimate improves (LAMA's value)."""
+
+Parents = dict[int, tuple[int, int] | None]
+
 
 class SubgoalSearch:
-    """Greedy best-first search with h_FF over a fixed list of grounded actions."""
+    """Lazy greedy best-first search with h_FF, landmarks and preferred actions."""
 
     def __init__(self, actions: Sequence[GroundAction]) -> None:
         self.actions = [a for a in actions if not a.delete_patterns]
+        self.packed = PackedActions(self.actions)
         self.expanded = 0
         """States the last search expanded (for the failure message)."""
         self.exhausted = False
         """Whether the last search ran out of states to look at (no plan exists)."""
-        self._ids: dict[Atom, int] = {}
-        self._pre: list[tuple[int, ...]] = []
-        self._add: list[tuple[int, ...]] = []
-        self._by_pre: dict[int, list[int]] = {}
-        self._anchor: dict[Atom, list[int]] = {}
-        self._free: list[int] = []
-        self._sizes: list[int] = []
-        for i, action in enumerate(self.actions):
-            positive = tuple(dict.fromkeys(p.atom for p in action.preconditions if p.positive))
-            pre = tuple(self._id(a) for a in positive)
-            self._pre.append(pre)
-            self._sizes.append(len(pre))
-            self._add.append(tuple(self._id(a) for a in action.add))
-            for atom in pre:
-                self._by_pre.setdefault(atom, []).append(i)
-            if positive:
-                self._anchor.setdefault(positive[0], []).append(i)
-            else:
-                self._free.append(i)
-
-    def _id(self, atom: Atom) -> int:
-        found = self._ids.get(atom)
-        if found is None:
-            found = self._ids[atom] = len(self._ids)
-        return found
-
-    def applicable(self, state: frozenset[Atom]) -> list[int]:
-        """Indices of the actions that can run in `state` (found through one precondition)."""
-        found = [i for i in self._free if self.actions[i].applicable(state)]
-        for atom in state:
-            for i in self._anchor.get(atom, ()):
-                if self.actions[i].applicable(state):
-                    found.append(i)
-        return found
-
-    def h_ff(self, state: frozenset[Atom], goal: Sequence[Atom]) -> tuple[float, set[int]]:
-        """The size of a relaxed plan from `state` to `goal`, and its actions.
-
-        A layered relaxed exploration (first achiever of each atom kept), then the
-        relaxed plan extracted backwards from the goal; infinite when unreachable.
-        """
-        ids = self._ids
-        reached: dict[int, int | None] = {ids[a]: None for a in state if a in ids}
-        targets = []
-        for atom in goal:
-            if atom not in state:
-                if atom not in ids:
-                    return float("inf"), set()
-                targets.append(ids[atom])
-        missing = set(targets)
-        waiting = list(self._sizes)
-        frontier = deque(reached)
-        for i in self._free:
-            self._fire(i, reached, frontier, missing)
-        while frontier and missing:
-            for i in self._by_pre.get(frontier.popleft(), ()):
-                waiting[i] -= 1
-                if waiting[i] == 0:
-                    self._fire(i, reached, frontier, missing)
-        if missing:
-            return float("inf"), set()
-        chosen: set[int] = set()
-        todo = list(targets)
-        done: set[int] = set()
-        while todo:
-            needed = todo.pop()
-            if needed in done:
-                continue
-            done.add(needed)
-            supporter = reached[needed]
-            if supporter is None or supporter in chosen:
-                continue
-            chosen.add(supporter)
-            todo.extend(self._pre[supporter])
-        return float(len(chosen)), chosen
-
-    def _fire(self, i: int, reached: dict[int, int | None], frontier: deque[int],
-              missing: set[int]) -> None:
-        for atom in self._add[i]:
-            if atom not in reached:
-                reached[atom] = i
-                frontier.append(atom)
-                missing.discard(atom)
+        self.use_landmarks = True
+        """Whether the landmark queues take part (off: h_FF and its preferred queue only)."""
+        self.boost = BOOST
 
     def search(
         self,
@@ -127,58 +62,103 @@ class SubgoalSearch:
     ) -> list[GroundAction] | None:
         """A plan from `start` to a state where every goal literal holds, or None.
 
-        `max_stored` bounds the states kept (each a set of atoms: memory, where
-        branching is wide).
+        `max_stored` bounds the states kept, expanded or waiting (memory, where
+        branching is wide). A state reached again keeps its first parent.
 
         No step may make a `keep` literal false: the plan runs where earlier siblings
         re-check their conditions on every tick, so undoing one would send the tree
         back to them.
 
-        Negative goal literals count for the heuristic only as satisfied or not (one
-        action each when not). Children of helpful actions (those of the relaxed plan
-        that can run now) are looked at first among equal estimates.
+        Negative goal literals count for the estimates only as satisfied or not (one
+        action each when not).
         """
-        positive = [g.atom for g in goal if g.positive]
-        negative = [g for g in goal if not g.positive]
-
-        def estimate(state: frozenset[Atom]) -> tuple[float, set[int]]:
-            h, relaxed = self.h_ff(state, positive)
-            return h + sum(1 for g in negative if not g.holds(state)), relaxed
-
-        parents: dict[frozenset[Atom], tuple[frozenset[Atom], int] | None] = {start: None}
+        packed = self.packed
+        self.expanded, self.exhausted = 0, False
+        test = packed.goal_test(goal, start)
+        if test is None:
+            self.exhausted = True
+            return None
+        positive, negative, numbers = test
+        banned = self._banned(keep, start)
+        first = packed.encode(start)
+        marks = packed.landmarks(bits(first), numbers) & ~first if self.use_landmarks else 0
+        queues: list[list[tuple[float, int, int, int, int]]] = [[] for _ in range(4 if marks else 2)]
+        turns = [0] * len(queues)
+        best = [INFINITE] * 2
         counter = itertools.count()
-        # Deferred evaluation: a child waits with its parent's estimate and is evaluated
-        # only when taken; children of helpful actions are taken first on ties.
-        queue: list[tuple[float, int, int, frozenset[Atom]]] = [(0.0, 0, next(counter), start)]
-        expanded = self.expanded = 0
-        self.exhausted = False
-        while queue and expanded < max_states:
-            _, _, _, state = heapq.heappop(queue)
-            if all(g.holds(state) for g in goal):
-                return self._path(parents, state)
-            h, helpful = estimate(state)
-            if h == float("inf"):
+        queues[0].append((0.0, next(counter), first, -1, -1))
+        parents: Parents = {first: None}  # each state's first parent: one entry per queue
+        reached: dict[int, int] = {}  # the landmarks each expanded state's path reached
+        while True:
+            chosen = _turn(queues, turns)
+            if chosen is None:
+                self.exhausted = True
+                return None
+            _, _, state, parent, action = heapq.heappop(queues[chosen])
+            if state in reached:
                 continue
-            expanded = self.expanded = expanded + 1
-            if deadline is not None and expanded % 32 == 0 and time.perf_counter() > deadline:
+            if state & positive == positive and not state & negative:
+                return self._path(parents, state)
+            true = bits(state)
+            h, relaxed = packed.h_ff(true, numbers)
+            if h == INFINITE:
+                reached[state] = 0  # a dead end: never looked at again
+                continue
+            h += bin(state & negative).count("1")
+            passed = reached[state] = (0 if parent < 0 else reached[parent]) | (state & marks)
+            estimates = (h, (bin(marks & ~passed).count("1")
+                             + bin(positive & passed & ~state).count("1")) if marks else h)
+            self._improved(estimates, best, turns)
+            self.expanded += 1
+            if self._over(max_states, deadline, max_stored, parents, queues):
                 return None
-            if max_stored is not None and len(parents) > max_stored:
-                return None
-            for i in self.applicable(state):
-                if keep and any(_falsifies(self.actions[i], k) for k in keep):
+            for i in packed.applicable(state, true):
+                if i in banned:
                     continue
-                child = self.actions[i].apply(state)
+                child = packed.apply(i, state)
                 if child in parents:
                     continue
                 parents[child] = (state, i)
-                heapq.heappush(queue, (h, 0 if i in helpful else 1, next(counter), child))
-        self.exhausted = not queue
-        return None
+                number = next(counter)
+                for q in range(0, len(queues), 2):
+                    estimate = estimates[q // 2]
+                    heapq.heappush(queues[q], (estimate, number, child, state, i))
+                    if i in relaxed:
+                        heapq.heappush(queues[q + 1], (estimate, number, child, state, i))
 
-    def _path(
-        self, parents: dict[frozenset[Atom], tuple[frozenset[Atom], int] | None],
-        state: frozenset[Atom],
-    ) -> list[GroundAction]:
+    def _banned(self, keep: Sequence[GroundLiteral], start: frozenset[Atom]) -> set[int]:
+        """The actions that would make a `keep` literal false."""
+        if not keep:
+            return set()
+        packed = self.packed
+        held = packed.literal_mask(k.atom for k in keep if k.positive)
+        absent = packed.literal_mask(k.atom for k in keep if not k.positive)
+        return {i for i in range(len(self.actions))
+                if packed.del_mask[i] & held & ~packed.add_mask[i]
+                or packed.add_mask[i] & absent}
+
+    def _improved(self, estimates: tuple[float, float], best: list[float],
+                  turns: list[int]) -> None:
+        """Note better estimates; each improvement moves the preferred queues ahead."""
+        for k, value in enumerate(estimates[:len(turns) // 2]):
+            if value < best[k]:
+                best[k] = value
+                for q in range(1, len(turns), 2):
+                    turns[q] -= self.boost
+
+    def _over(self, max_states: int, deadline: float | None, max_stored: int | None,
+              parents: Parents, queues: list[list[tuple[float, int, int, int, int]]]) -> bool:
+        """Whether a budget ran out: states expanded, time, or states stored."""
+        if self.expanded >= max_states:
+            return True
+        if self.expanded % 32 == 0:
+            if deadline is not None and time.perf_counter() > deadline:
+                return True
+            if max_stored is not None and len(parents) > max_stored:
+                return True
+        return False
+
+    def _path(self, parents: Parents, state: int) -> list[GroundAction]:
         steps: list[GroundAction] = []
         link = parents[state]
         while link is not None:
@@ -189,7 +169,12 @@ class SubgoalSearch:
         return steps
 
 
-def _falsifies(action: GroundAction, literal: GroundLiteral) -> bool:
-    if literal.positive:
-        return action.deletes(literal.atom)
-    return literal.atom in action.add
+def _turn(queues: list[list[tuple[float, int, int, int, int]]], turns: list[int]) -> int | None:
+    """The non-empty queue whose turn it is (fewest turns taken, boosts counted)."""
+    chosen = None
+    for q, queue in enumerate(queues):
+        if queue and (chosen is None or turns[q] < turns[chosen]):
+            chosen = q
+    if chosen is not None:
+        turns[chosen] += 1
+    return chosen
