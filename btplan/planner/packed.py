@@ -37,10 +37,16 @@ class PackedActions:
 
     def __init__(self, actions: Sequence[GroundAction]) -> None:
         self.actions = list(actions)
+        changed = {a for action in self.actions for a in (*action.add, *action.delete)}
         self.ids: dict[Atom, int] = {}
+        self.static: list[tuple[Atom, ...]] = []
+        """Each action's positive preconditions that no action changes: true in every
+        state reached from a start that has them, so they get no bit (`static_misses`)."""
         for action in self.actions:
+            self.static.append(tuple(p.atom for p in action.preconditions
+                                     if p.positive and p.atom not in changed))
             for atom in (*(p.atom for p in action.preconditions), *action.add, *action.delete):
-                if WILDCARD not in atom.args:
+                if WILDCARD not in atom.args and (atom in changed or not _positive(action, atom)):
                     self.ids.setdefault(atom, len(self.ids))
         ids = self.ids
         self.atoms = list(ids)
@@ -54,7 +60,8 @@ class PackedActions:
         self.anchor: list[list[int]] = [[] for _ in ids]
         self.free: list[int] = []
         for i, action in enumerate(self.actions):
-            pre = tuple(dict.fromkeys(ids[p.atom] for p in action.preconditions if p.positive))
+            pre = tuple(dict.fromkeys(ids[p.atom] for p in action.preconditions
+                                      if p.positive and p.atom in ids))
             self.pre.append(pre)
             self.pre_mask.append(_mask(pre))
             self.neg_mask.append(self.literal_mask(
@@ -67,6 +74,12 @@ class PackedActions:
                 self.by_pre[number].append(i)
             (self.anchor[pre[0]] if pre else self.free).append(i)
         self.sizes = [len(pre) for pre in self.pre]
+        self._goals: list[int] = []
+        self._goal_set: frozenset[int] = frozenset()
+
+    def static_misses(self, start: frozenset[Atom]) -> set[int]:
+        """The actions with a precondition that nothing changes and `start` lacks."""
+        return {i for i, atoms in enumerate(self.static) if any(a not in start for a in atoms)}
 
     def literal_mask(self, atoms: Iterable[Atom]) -> int:
         """The bits of `atoms`, a wildcard pattern standing for every known atom it matches."""
@@ -108,28 +121,31 @@ class PackedActions:
         supporter = [-2] * len(self.atoms)  # -2: not reached, -1: true in the state
         for atom in true:
             supporter[atom] = -1
-        missing = {g for g in goals if supporter[g] == -2}
+        missing = len({g for g in goals if supporter[g] == -2})
         if not missing:
             return 0.0, set()
+        wanted = self._wanted(goals)
         adds, by_pre = self.add, self.by_pre
-        waiting = list(self.sizes)
+        waiting = self.sizes[:]
         frontier = list(true)
-        for i in self.free:
-            for atom in adds[i]:
-                if supporter[atom] == -2:
-                    supporter[atom] = i
-                    frontier.append(atom)
-                    missing.discard(atom)
+        fired = self.free
         head = 0
-        while missing and head < len(frontier):
+        while True:
+            for i in fired:
+                for atom in adds[i]:
+                    if supporter[atom] == -2:
+                        supporter[atom] = i
+                        frontier.append(atom)
+                        if atom in wanted:
+                            missing -= 1
+            if not missing or head == len(frontier):
+                break
+            fired = []
             for i in by_pre[frontier[head]]:
-                waiting[i] -= 1
-                if waiting[i] == 0:
-                    for atom in adds[i]:
-                        if supporter[atom] == -2:
-                            supporter[atom] = i
-                            frontier.append(atom)
-                            missing.discard(atom)
+                left = waiting[i] - 1
+                waiting[i] = left
+                if not left:
+                    fired.append(i)
             head += 1
         if missing:
             return INFINITE, set()
@@ -141,6 +157,12 @@ class PackedActions:
                 chosen.add(i)
                 todo.extend(a for a in self.pre[i] if supporter[a] >= 0)
         return float(len(chosen)), chosen
+
+    def _wanted(self, goals: Sequence[int]) -> frozenset[int]:
+        """`goals` as a set, the last one kept (a search asks for the same goals)."""
+        if self._goals != goals:
+            self._goals, self._goal_set = list(goals), frozenset(goals)
+        return self._goal_set
 
     def landmarks(self, true: Sequence[int], goals: Sequence[int]) -> int:
         """The atoms every relaxed plan from the state to `goals` makes true at some
@@ -190,6 +212,12 @@ class PackedActions:
                 positive.append(literal.atom)
         numbers = [self.ids[a] for a in dict.fromkeys(positive)]
         return _mask(numbers), self.literal_mask(g.atom for g in goal if not g.positive), numbers
+
+
+def _positive(action: GroundAction, atom: Atom) -> bool:
+    """Whether `atom` is a positive precondition of `action` (and nothing else of it)."""
+    return atom not in action.add and atom not in action.delete and any(
+        p.positive and p.atom == atom for p in action.preconditions)
 
 
 def _mask(numbers: Iterable[int]) -> int:

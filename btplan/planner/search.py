@@ -60,7 +60,19 @@ class SubgoalSearch:
         keep: Sequence[GroundLiteral] = (),
         max_stored: int | None = None,
     ) -> list[GroundAction] | None:
-        """A plan from `start` to a state where every goal literal holds, or None.
+        """A plan from `start` to a state where every goal literal holds, or None
+        (`begin` and one `SearchRun.resume`)."""
+        return self.begin(start, goal, max_states, keep, max_stored).resume(deadline)
+
+    def begin(
+        self,
+        start: frozenset[Atom],
+        goal: Sequence[GroundLiteral],
+        max_states: int = MAX_STATES,
+        keep: Sequence[GroundLiteral] = (),
+        max_stored: int | None = None,
+    ) -> SearchRun:
+        """A search from `start` to `goal`, to be resumed until it is done.
 
         `max_stored` bounds the states kept, expanded or waiting (memory, where
         branching is wide). A state reached again keeps its first parent.
@@ -72,59 +84,7 @@ class SubgoalSearch:
         Negative goal literals count for the estimates only as satisfied or not (one
         action each when not).
         """
-        packed = self.packed
-        self.expanded, self.exhausted = 0, False
-        test = packed.goal_test(goal, start)
-        if test is None:
-            self.exhausted = True
-            return None
-        positive, negative, numbers = test
-        banned = self._banned(keep, start)
-        first = packed.encode(start)
-        marks = packed.landmarks(bits(first), numbers) & ~first if self.use_landmarks else 0
-        queues: list[list[tuple[float, int, int, int, int]]] = [[] for _ in range(4 if marks else 2)]
-        turns = [0] * len(queues)
-        best = [INFINITE] * 2
-        counter = itertools.count()
-        queues[0].append((0.0, next(counter), first, -1, -1))
-        parents: Parents = {first: None}  # each state's first parent: one entry per queue
-        reached: dict[int, int] = {}  # the landmarks each expanded state's path reached
-        while True:
-            chosen = _turn(queues, turns)
-            if chosen is None:
-                self.exhausted = True
-                return None
-            _, _, state, parent, action = heapq.heappop(queues[chosen])
-            if state in reached:
-                continue
-            if state & positive == positive and not state & negative:
-                return self._path(parents, state)
-            true = bits(state)
-            h, relaxed = packed.h_ff(true, numbers)
-            if h == INFINITE:
-                reached[state] = 0  # a dead end: never looked at again
-                continue
-            h += bin(state & negative).count("1")
-            passed = reached[state] = (0 if parent < 0 else reached[parent]) | (state & marks)
-            estimates = (h, (bin(marks & ~passed).count("1")
-                             + bin(positive & passed & ~state).count("1")) if marks else h)
-            self._improved(estimates, best, turns)
-            self.expanded += 1
-            if self._over(max_states, deadline, max_stored, parents, queues):
-                return None
-            for i in packed.applicable(state, true):
-                if i in banned:
-                    continue
-                child = packed.apply(i, state)
-                if child in parents:
-                    continue
-                parents[child] = (state, i)
-                number = next(counter)
-                for q in range(0, len(queues), 2):
-                    estimate = estimates[q // 2]
-                    heapq.heappush(queues[q], (estimate, number, child, state, i))
-                    if i in relaxed:
-                        heapq.heappush(queues[q + 1], (estimate, number, child, state, i))
+        return SearchRun(self, start, goal, max_states, keep, max_stored)
 
     def _banned(self, keep: Sequence[GroundLiteral], start: frozenset[Atom]) -> set[int]:
         """The actions that would make a `keep` literal false."""
@@ -146,18 +106,6 @@ class SubgoalSearch:
                 for q in range(1, len(turns), 2):
                     turns[q] -= self.boost
 
-    def _over(self, max_states: int, deadline: float | None, max_stored: int | None,
-              parents: Parents, queues: list[list[tuple[float, int, int, int, int]]]) -> bool:
-        """Whether a budget ran out: states expanded, time, or states stored."""
-        if self.expanded >= max_states:
-            return True
-        if self.expanded % 32 == 0:
-            if deadline is not None and time.perf_counter() > deadline:
-                return True
-            if max_stored is not None and len(parents) > max_stored:
-                return True
-        return False
-
     def _path(self, parents: Parents, state: int) -> list[GroundAction]:
         steps: list[GroundAction] = []
         link = parents[state]
@@ -167,6 +115,103 @@ class SubgoalSearch:
             link = parents[state]
         steps.reverse()
         return steps
+
+
+
+class SearchRun:
+    """One search, which can stop at a deadline and go on later where it stopped.
+
+    Offline planning gives the whole-goal search a slice of time as soon as
+    backchaining's first strategy fails, and the rest after the other strategies.
+    """
+
+    def __init__(self, engine: SubgoalSearch, start: frozenset[Atom],
+                 goal: Sequence[GroundLiteral], max_states: int,
+                 keep: Sequence[GroundLiteral], max_stored: int | None) -> None:
+        self.engine = engine
+        self.max_states, self.max_stored = max_states, max_stored
+        self.done = False
+        """Whether the search is over: a plan found, no plan exists, or a bound reached."""
+        self.plan: list[GroundAction] | None = None
+        self.expanded = 0
+        self.exhausted = False
+        """Whether the search ran out of states to look at (no plan exists)."""
+        engine.expanded, engine.exhausted = 0, False
+        packed = engine.packed
+        test = packed.goal_test(goal, start)
+        first = packed.encode(start)
+        self.parents: Parents = {first: None}  # each state's first parent: one entry a queue
+        self.reached: dict[int, int] = {}  # the landmarks each expanded state's path reached
+        self.positive, self.negative, self.numbers = test or (0, 0, [])
+        if test is None:
+            self._finish(exhausted=True)
+        self.banned = engine._banned(keep, start) | packed.static_misses(start)
+        self.marks = (packed.landmarks(bits(first), self.numbers) & ~first
+                      if engine.use_landmarks and not self.done else 0)
+        self.queues: list[list[tuple[float, int, int, int, int]]] = [
+            [] for _ in range(4 if self.marks else 2)]
+        self.turns = [0] * len(self.queues)
+        self.best = [INFINITE] * 2
+        self.counter = itertools.count()
+        self.queues[0].append((0.0, next(self.counter), first, -1, -1))
+
+    def _finish(self, exhausted: bool = False, plan: list[GroundAction] | None = None) -> None:
+        self.done, self.exhausted, self.plan = True, exhausted, plan
+        self.engine.exhausted = exhausted
+
+    def resume(self, deadline: float | None = None) -> list[GroundAction] | None:
+        """Search on until a plan is found (returned), the search is over, or `deadline`."""
+        packed, engine = self.engine.packed, self.engine
+        positive, negative, numbers, marks = self.positive, self.negative, self.numbers, self.marks
+        queues, turns, parents, reached = self.queues, self.turns, self.parents, self.reached
+        while not self.done:
+            chosen = _turn(queues, turns)
+            if chosen is None:
+                self._finish(exhausted=True)
+                break
+            _, _, state, parent, action = heapq.heappop(queues[chosen])
+            if state in reached:
+                continue
+            if state & positive == positive and not state & negative:
+                self._finish(plan=engine._path(parents, state))
+                break
+            true = bits(state)
+            h, relaxed = packed.h_ff(true, numbers)
+            if h == INFINITE:
+                reached[state] = 0  # a dead end: never looked at again
+                continue
+            h += bin(state & negative).count("1")
+            passed = reached[state] = (0 if parent < 0 else reached[parent]) | (state & marks)
+            estimates = (h, (bin(marks & ~passed).count("1")
+                             + bin(positive & passed & ~state).count("1")) if marks else h)
+            engine._improved(estimates, self.best, turns)
+            self.expanded = engine.expanded = self.expanded + 1
+            if self.expanded >= self.max_states or (
+                    self.max_stored is not None and len(parents) > self.max_stored):
+                self._finish()
+                break
+            for i in packed.applicable(state, true):
+                if i in self.banned:
+                    continue
+                child = packed.apply(i, state)
+                if child in parents:
+                    continue
+                parents[child] = (state, i)
+                number = next(self.counter)
+                for q in range(0, len(queues), 2):
+                    estimate = estimates[q // 2]
+                    heapq.heappush(queues[q], (estimate, number, child, state, i))
+                    if i in relaxed:
+                        heapq.heappush(queues[q + 1], (estimate, number, child, state, i))
+            if deadline is not None and self.expanded % 32 == 0 \
+                    and time.perf_counter() > deadline:
+                break
+        return self.plan
+
+    @property
+    def stored(self) -> int:
+        """States kept, expanded or waiting."""
+        return len(self.parents)
 
 
 def _turn(queues: list[list[tuple[float, int, int, int, int]]], turns: list[int]) -> int | None:
