@@ -165,7 +165,7 @@ def _strategies(run: _Run, strategies: list[PlannerOptions],
                 stalled: Callable[[], PlanResult | None] | None = None) -> PlanResult:
     """The strategies in turn; the first error, saying what the others did, when all fail.
 
-    `stalled` is asked once the first strategy has failed; a result it returns is taken.
+    `stalled` is asked once the first attempt has failed; a result it returns is taken.
     """
     first_error: PlanningError | None = None
     found: PlanResult | None = None
@@ -174,16 +174,13 @@ def _strategies(run: _Run, strategies: list[PlannerOptions],
         if number:  # the later strategies start from scratch, without retries
             strategy = replace(strategy, retries=0)
         try:
-            result = _retrying(run, strategy, given_up)
+            result = _retrying(run, strategy, given_up, None if number else stalled)
         except BudgetExceededError:
             if found is not None:
                 return found
             raise
         except PlanningError as error:
             first_error = first_error or error
-            rescued = stalled() if stalled is not None and number == 0 else None
-            if rescued is not None:
-                return rescued
             continue
         if result.stats.premature_successes == 0:
             return result
@@ -230,13 +227,16 @@ def _adopt(run: _Run, opts: PlannerOptions, steps: list[GroundAction]) -> PlanRe
     return result
 
 
-def _retrying(run: _Run, opts: PlannerOptions, given_up: list[Choice]) -> PlanResult:
+def _retrying(run: _Run, opts: PlannerOptions, given_up: list[Choice],
+              stalled: Callable[[], PlanResult | None] | None = None) -> PlanResult:
     """Attempts of one strategy, each after a failure without one more achiever choice.
 
     When an attempt stops (no conflict-free place, a dead end, a loop), the choice the
     loop blames (btplan/planner/backjump.py) is banned and the attempt starts over from
     the initial state, up to `opts.retries` times; the choices given up are
     appended to `given_up`. Raises the first attempt's error when none succeeds.
+    `stalled` is asked right after the first attempt fails (the last resort's early
+    slice); a result it returns is taken.
     """
     banned: list[Choice] = []
     first: PlanningError | None = None
@@ -248,6 +248,9 @@ def _retrying(run: _Run, opts: PlannerOptions, given_up: list[Choice]) -> PlanRe
             raise
         except PlanningError as error:
             first = first or error
+            rescued = stalled() if stalled is not None and attempt == 0 else None
+            if rescued is not None:
+                return rescued
             fresh = [c for c in culprits if c not in banned]
             late = run.deadline is not None and time.perf_counter() > run.started + (
                 RETRY_SHARE * (run.deadline - run.started))

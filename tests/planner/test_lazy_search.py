@@ -132,20 +132,23 @@ def test_a_search_paused_at_a_deadline_goes_on_where_it_stopped(tmp_path: Path) 
     assert run.plan == whole
 
 
-def test_the_whole_goal_search_starts_when_the_first_strategy_fails(
-        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_whole_goal_search_starts_when_the_first_attempt_fails(
+        monkeypatch: pytest.MonkeyPatch) -> None:
     task = load(str(DOMAINS / "planner_sussman.bt"))
+    attempt = offline._attempt
     tried = []
 
-    def failing(run: object, opts: object, given_up: object) -> object:
+    def failing(run: object, opts: object, *args: object, **kwargs: object) -> object:
+        if kwargs.get("plan") is not None:  # the tree with the searched plan behind it
+            return attempt(run, opts, *args, **kwargs)  # type: ignore[arg-type]
         tried.append(opts)
         raise NoAchieverError("stuck")
 
-    monkeypatch.setattr(offline, "_retrying", failing)
+    monkeypatch.setattr(offline, "_attempt", failing)
     result = plan(task, timeout=60)  # with a time limit: its slice comes at once
     assert result.stats.whole_goal and len(tried) == 1
     validate(task, result.executed)
     tried.clear()
-    result = plan(task)  # without one: after every strategy, as before
-    assert result.stats.whole_goal and len(tried) == len(offline.fallback_strategies(
-        offline.PlannerOptions())) + 1
+    result = plan(task)  # without one: after every strategy (one attempt each), as before
+    assert result.stats.whole_goal
+    assert len(tried) == len(offline.fallback_strategies(offline.PlannerOptions())) + 1
