@@ -18,7 +18,7 @@ from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from btplan.acting.loop import BlendedLoop, Expansion, TickReport
-from btplan.acting.whole_goal import EarlySlice, Searched, WholeGoalSearch
+from btplan.acting.whole_goal import EarlySlice, WholeGoalSearch
 from btplan.bt import BehaviorTree, LeafKey
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
@@ -125,17 +125,15 @@ def plan(
         soft = started + timeout * BACKCHAIN_SHARE
     run = _Run(task, seed, max_ticks, deadline, timeout, on_expansion, started, models, stop)
     last = WholeGoalSearch(task, models, seed) if whole else None
-    early = None if last is None or deadline is None else EarlySlice(last, started, deadline)
+    early = None if last is None or deadline is None else EarlySlice(last, deadline)
     try:
-        share = replace(run, early=early)
+        share = run
         if soft is not None and soft != deadline and timeout is not None:
-            share = replace(share, deadline=soft, timeout=soft - started, limit=(
+            share = replace(run, deadline=soft, timeout=soft - started, limit=(
                 f"backchaining's share ({timeout * BACKCHAIN_SHARE:g} s) of the {timeout:g} s "
                 "time limit"))
         return _strategies(share, strategies, None if early is None else (
             lambda: _early(run, opts, early)))
-    except Searched as found:  # the early slice, taken while backchaining was paused
-        return _adopt(run, opts, found.steps)
     except PlanningError as error:
         out_of_time = deadline is not None and time.perf_counter() >= deadline
         if last is None or out_of_time:
@@ -158,8 +156,6 @@ class _Run:
     stop: Callable[[], bool] | None
     limit: str = ""
     """How a failure names the time limit that ran out, when it is not `timeout` itself."""
-    early: EarlySlice | None = None
-    """The whole-goal search's early slice, asked after every tick (whole_goal.py)."""
 
 
 BACKCHAIN_SHARE = 0.8
@@ -348,8 +344,6 @@ def _rounds(
                 f"{run.limit or f'time limit of {run.timeout:g} s'} reached after {len(loop.expansions)} expansions "
                 f"(tree of {len(loop.tree.nodes())} nodes); expanded most often: "
                 f"{loop.most_expanded() or 'nothing'}")
-        if run.early is not None:
-            run.early.tick()
         if on_expansion is not None:
             for expansion in report.expansions:
                 on_expansion(loop.tree, expansion)

@@ -2,10 +2,9 @@
 initial state, for btplan/acting/offline.py to put behind the goal tree.
 
 The search is begun once and resumed: offline planning gives it a slice of the time
-as soon as backchaining's first attempt has failed, or has run for a third of the time
-limit (backchaining is visibly stuck, and retries and later strategies rarely do
-better), and whatever is left once every strategy has failed. h^2 is asked first
-whether the goal can hold at all.
+as soon as backchaining's first attempt has failed (backchaining is visibly stuck, and
+retries and later strategies rarely do better), and whatever is left once every
+strategy has failed. h^2 is asked first whether the goal can hold at all.
 """
 
 from __future__ import annotations
@@ -26,9 +25,6 @@ each as packed ints (child-snack's states have a thousand successors)."""
 
 EARLY_SHARE = 0.5
 """The share of the time left that the search gets in its early slice."""
-
-STALL_SHARE = 1 / 3
-"""The share of the time limit after which a first attempt still running counts as stuck."""
 
 
 class WholeGoalSearch:
@@ -70,25 +66,11 @@ class WholeGoalSearch:
         return f"{reason} after {run.expanded} states"
 
 
-class Searched(Exception):
-    """The early slice found a plan while backchaining waited: planning ends with it."""
-
-    def __init__(self, steps: list[GroundAction]) -> None:
-        super().__init__(f"a plan of {len(steps)} steps for the whole goal")
-        self.steps = steps
-
-
 class EarlySlice:
-    """The whole-goal search's early slice, taken once: when the first attempt fails,
-    or, if it is still running then, once STALL_SHARE of the time limit has gone.
+    """The whole-goal search's early slice, taken once, when the first attempt fails."""
 
-    Backchaining and the search share one thread: the slice runs inside the callback
-    after a tick, and backchaining goes on where it was when the slice finds nothing.
-    """
-
-    def __init__(self, last: WholeGoalSearch, started: float, deadline: float) -> None:
+    def __init__(self, last: WholeGoalSearch, deadline: float) -> None:
         self.last, self.deadline = last, deadline
-        self.stall_at = started + STALL_SHARE * (deadline - started)
         self.taken = False
 
     def take(self) -> list[GroundAction] | None:
@@ -98,14 +80,6 @@ class EarlySlice:
         self.taken = True
         now = time.perf_counter()
         return self.last.resume(now + (self.deadline - now) * EARLY_SHARE)
-
-    def tick(self) -> None:
-        """After a tick of backchaining: take the slice once it is due; raise Searched
-        with the plan when it finds one."""
-        if not self.taken and time.perf_counter() > self.stall_at:
-            steps = self.take()
-            if steps is not None:
-                raise Searched(steps)
 
 
 def unsolvable(task: Task, models: AchieverIndex) -> str | None:

@@ -86,7 +86,7 @@ class SubgoalSearch:
         """
         return SearchRun(self, start, goal, max_states, keep, max_stored)
 
-    def _banned(self, keep: Sequence[GroundLiteral], start: frozenset[Atom]) -> set[int]:
+    def banned(self, keep: Sequence[GroundLiteral]) -> set[int]:
         """The actions that would make a `keep` literal false."""
         if not keep:
             return set()
@@ -97,8 +97,8 @@ class SubgoalSearch:
                 if packed.del_mask[i] & held & ~packed.add_mask[i]
                 or packed.add_mask[i] & absent}
 
-    def _improved(self, estimates: tuple[float, float], best: list[float],
-                  turns: list[int]) -> None:
+    def improved(self, estimates: tuple[float, float], best: list[float],
+                 turns: list[int]) -> None:
         """Note better estimates; each improvement moves the preferred queues ahead."""
         for k, value in enumerate(estimates[:len(turns) // 2]):
             if value < best[k]:
@@ -106,7 +106,8 @@ class SubgoalSearch:
                 for q in range(1, len(turns), 2):
                     turns[q] -= self.boost
 
-    def _path(self, parents: Parents, state: int) -> list[GroundAction]:
+    def path(self, parents: Parents, state: int) -> list[GroundAction]:
+        """The actions from the start to `state`, by way of each state's first parent."""
         steps: list[GroundAction] = []
         link = parents[state]
         while link is not None:
@@ -145,7 +146,7 @@ class SearchRun:
         self.positive, self.negative, self.numbers = test or (0, 0, [])
         if test is None:
             self._finish(exhausted=True)
-        self.banned = engine._banned(keep, start) | packed.static_misses(start)
+        self.banned = engine.banned(keep) | packed.static_misses(start)
         self.marks = (packed.landmarks(bits(first), self.numbers) & ~first
                       if engine.use_landmarks and not self.done else 0)
         self.queues: list[list[tuple[float, int, int, int, int]]] = [
@@ -173,7 +174,7 @@ class SearchRun:
             if state in reached:
                 continue
             if state & positive == positive and not state & negative:
-                self._finish(plan=engine._path(parents, state))
+                self._finish(plan=engine.path(parents, state))
                 break
             true = bits(state)
             h, relaxed = packed.h_ff(true, numbers)
@@ -184,7 +185,7 @@ class SearchRun:
             passed = reached[state] = (0 if parent < 0 else reached[parent]) | (state & marks)
             estimates = (h, (bin(marks & ~passed).count("1")
                              + bin(positive & passed & ~state).count("1")) if marks else h)
-            engine._improved(estimates, self.best, turns)
+            engine.improved(estimates, self.best, turns)
             self.expanded = engine.expanded = self.expanded + 1
             if self.expanded >= self.max_states or (
                     self.max_stored is not None and len(parents) > self.max_stored):

@@ -7,19 +7,17 @@ Small generated problems; the counts compared are states expanded, never times.
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
 import pytest
 
 import btplan.acting.offline as offline
 from btplan.acting.offline import load, plan
-from btplan.acting.whole_goal import EarlySlice, Searched, WholeGoalSearch
 from btplan.errors import NoAchieverError
 from btplan.lang import load as load_paths
 from btplan.lang.generators import generate
 from btplan.model import Atom, GroundLiteral, Task
-from btplan.planner import AchieverIndex
+from btplan.planner import AchieverIndex, PlannerOptions
 from btplan.planner.packed import bits
 from tests.planner.shapes import DOMAINS
 from tests.planner.test_classic import validate
@@ -153,20 +151,5 @@ def test_the_whole_goal_search_starts_when_the_first_attempt_fails(
     tried.clear()
     result = plan(task)  # without one: after every strategy (one attempt each), as before
     assert result.stats.whole_goal
-    assert len(tried) == len(offline.fallback_strategies(offline.PlannerOptions())) + 1
+    assert len(tried) == len(offline.fallback_strategies(PlannerOptions())) + 1
 
-
-def test_the_early_slice_comes_once_a_first_attempt_has_run_long_enough() -> None:
-    task = load(str(DOMAINS / "planner_sussman.bt"))
-    models = AchieverIndex(task)
-    now = time.perf_counter()
-    # The attempt started long ago: a third of the limit has gone, the slice is due.
-    due = EarlySlice(WholeGoalSearch(task, models, 0), now - 100, now + 100)
-    with pytest.raises(Searched) as found:
-        due.tick()
-    validate(task, found.value.steps)
-    due.tick()  # taken once only: nothing more happens
-    # Just started, with a long limit: the slice is not due, backchaining goes on.
-    fresh = EarlySlice(WholeGoalSearch(task, models, 0), now, now + 3600)
-    fresh.tick()
-    assert not fresh.taken
