@@ -75,7 +75,8 @@ class SubgoalSearch:
         """A search from `start` to `goal`, to be resumed until it is done.
 
         `max_stored` bounds the states kept, expanded or waiting (memory, where
-        branching is wide). A state reached again keeps its first parent.
+        branching is wide). A state reached again before it is expanded waits again
+        only when its new parent's h_FF is lower, and then takes that parent.
 
         No step may make a `keep` literal false: the plan runs where earlier siblings
         re-check their conditions on every tick, so undoing one would send the tree
@@ -107,7 +108,7 @@ class SubgoalSearch:
                     turns[q] -= self.boost
 
     def path(self, parents: Parents, state: int) -> list[GroundAction]:
-        """The actions from the start to `state`, by way of each state's first parent."""
+        """The actions from the start to `state`, by way of each state's parent."""
         steps: list[GroundAction] = []
         link = parents[state]
         while link is not None:
@@ -141,8 +142,9 @@ class SearchRun:
         packed = engine.packed
         test = packed.goal_test(goal, start)
         first = packed.encode(start)
-        self.parents: Parents = {first: None}  # each state's first parent: one entry a queue
+        self.parents: Parents = {first: None}  # each state's best parent so far
         self.reached: dict[int, int] = {}  # the landmarks each expanded state's path reached
+        self.keys: dict[int, float] = {first: 0.0}  # the h_FF each waiting state waits with
         self.positive, self.negative, self.numbers = test or (0, 0, [])
         if test is None:
             self._finish(exhausted=True)
@@ -165,6 +167,7 @@ class SearchRun:
         packed, engine = self.engine.packed, self.engine
         positive, negative, numbers, marks = self.positive, self.negative, self.numbers, self.marks
         queues, turns, parents, reached = self.queues, self.turns, self.parents, self.reached
+        keys = self.keys
         while not self.done:
             chosen = _turn(queues, turns)
             if chosen is None:
@@ -195,9 +198,9 @@ class SearchRun:
                 if i in self.banned:
                     continue
                 child = packed.apply(i, state)
-                if child in parents:
-                    continue
-                parents[child] = (state, i)
+                if child in parents and (child in reached or keys[child] <= h):
+                    continue  # waiting already, from a parent estimated no worse
+                parents[child], keys[child] = (state, i), h
                 number = next(self.counter)
                 for q in range(0, len(queues), 2):
                     estimate = estimates[q // 2]
