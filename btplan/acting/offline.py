@@ -17,6 +17,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from btplan.acting.loop import BlendedLoop, Expansion, TickReport
+from btplan.acting.whole_goal import EarlySlice, WholeGoalSearch
 from btplan.bt import BehaviorTree, LeafKey
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
@@ -123,17 +124,21 @@ def plan(
     if whole and timeout:  # leave the whole-goal search its share of the time
         soft = started + timeout * BACKCHAIN_SHARE
     run = _Run(task, seed, max_ticks, deadline, timeout, on_expansion, started, models, stop)
+    last = WholeGoalSearch(task, models, seed) if whole else None
+    early = None if last is None or deadline is None else EarlySlice(last, deadline)
     try:
-        share = run if soft == deadline or soft is None or timeout is None else replace(
-            run, deadline=soft, timeout=soft - started,
-            limit=f"backchaining's share ({timeout * BACKCHAIN_SHARE:g} s) of the {timeout:g} s "
-                  "time limit")
-        return _strategies(share, strategies)
+        share = run
+        if soft is not None and soft != deadline and timeout is not None:
+            share = replace(run, deadline=soft, timeout=soft - started, limit=(
+                f"backchaining's share ({timeout * BACKCHAIN_SHARE:g} s) of the {timeout:g} s "
+                "time limit"))
+        return _strategies(share, strategies, None if early is None else (
+            lambda: _early(run, opts, early)))
     except PlanningError as error:
         out_of_time = deadline is not None and time.perf_counter() >= deadline
-        if not whole or out_of_time:
+        if last is None or out_of_time:
             raise
-        return _whole_goal(run, opts, error)
+        return _whole_goal(run, opts, error, last)
 
 
 @record(frozen=True)
@@ -157,8 +162,12 @@ BACKCHAIN_SHARE = 0.8
 """The share of a time limit backchaining gets before the whole-goal search (the last resort)."""
 
 
-def _strategies(run: _Run, strategies: list[PlannerOptions]) -> PlanResult:
-    """The strategies in turn; the first error, saying what the others did, when all fail."""
+def _strategies(run: _Run, strategies: list[PlannerOptions],
+                stalled: Callable[[], PlanResult | None] | None = None) -> PlanResult:
+    """The strategies in turn; the first error, saying what the others did, when all fail.
+
+    `stalled` is asked once the first attempt has failed; a result it returns is taken.
+    """
     first_error: PlanningError | None = None
     found: PlanResult | None = None
     given_up: list[Choice] = []
@@ -166,7 +175,7 @@ def _strategies(run: _Run, strategies: list[PlannerOptions]) -> PlanResult:
         if number:  # the later strategies start from scratch, without retries
             strategy = replace(strategy, retries=0)
         try:
-            result = _retrying(run, strategy, given_up)
+            result = _retrying(run, strategy, given_up, None if number else stalled)
         except BudgetExceededError:
             if found is not None:
                 return found
@@ -189,59 +198,44 @@ def _strategies(run: _Run, strategies: list[PlannerOptions]) -> PlanResult:
     raise first_error
 
 
-def _whole_goal(run: _Run, opts: PlannerOptions, backchaining: PlanningError) -> PlanResult:
-    """The last resort when backchaining failed: search a plan for the whole goal from
-    the initial state and put it behind the goal tree (rescue.plan_whole_goal)."""
-    task, deadline, models = run.task, run.deadline, run.models
-    proof = _unsolvable(task, models)
-    if proof is not None:
-        raise type(backchaining)(f"{backchaining.reason}; and no plan exists: {proof}")
-    engine = models.subgoal_search
-    start = SymbolicWorld(task, seed=run.seed).facts()
-    steps = engine.search(start, list(task.goal_literals), max_states=WHOLE_STATES,
-                          deadline=deadline, max_stored=WHOLE_STORED)
+def _early(run: _Run, opts: PlannerOptions, early: EarlySlice) -> PlanResult | None:
+    """The whole-goal search's early slice when the first attempt failed."""
+    steps = early.take()
+    return None if steps is None else _adopt(run, opts, steps)
+
+
+def _whole_goal(run: _Run, opts: PlannerOptions, backchaining: PlanningError,
+                last: WholeGoalSearch) -> PlanResult:
+    """The last resort when backchaining failed: search on for a plan for the whole goal
+    from the initial state and put it behind the goal tree (rescue.plan_whole_goal)."""
+    steps = last.resume(run.deadline)
+    if last.proof is not None:
+        raise type(backchaining)(f"{backchaining.reason}; and no plan exists: {last.proof}")
     if steps is None:
-        why = ("no plan exists" if engine.exhausted
-               else "time limit reached" if deadline is not None
-               and time.perf_counter() > deadline else "memory bound of stored states reached")
-        error = type(backchaining)(
+        raise type(backchaining)(
             f"{backchaining.reason}; then the search for the whole goal from the initial state "
-            f"found no plan ({why} after {engine.expanded} states)")
-        raise error
+            f"found no plan ({last.why(run.deadline)})")
+    return _adopt(run, opts, steps)
+
+
+def _adopt(run: _Run, opts: PlannerOptions, steps: list[GroundAction]) -> PlanResult:
+    """The tree with a plan for the whole goal behind the goal tree, run from the start."""
     options = replace(opts, search_stuck=False, retries=0)
     result = _attempt(run, options, plan=steps)
     result.stats.whole_goal = True
     return result
 
 
-def _unsolvable(task: Task, models: AchieverIndex) -> str | None:
-    """Why the goal can never hold, when h^2 proves it (the search would be in vain)."""
-    goals = [g for g in task.goal_literals if g.positive]
-    for goal in goals:
-        if models.mutexes.unreachable(goal.atom):
-            return f"{goal} can never hold (h^2 mutexes)"
-    for i, first in enumerate(goals):
-        for second in goals[i + 1:]:
-            if models.mutexes.exclusive(first, second):
-                return f"{first} and {second} can never hold together (h^2 mutexes)"
-    return None
-
-
-WHOLE_STATES = 1_000_000
-"""States the whole-goal search may expand; the time limit usually comes first."""
-
-WHOLE_STORED = 200_000
-"""States the whole-goal search may keep: about 4 KB each on child-snack, whose
-states have a thousand successors (1.5 GB in 30 s without this bound)."""
-
-
-def _retrying(run: _Run, opts: PlannerOptions, given_up: list[Choice]) -> PlanResult:
+def _retrying(run: _Run, opts: PlannerOptions, given_up: list[Choice],
+              stalled: Callable[[], PlanResult | None] | None = None) -> PlanResult:
     """Attempts of one strategy, each after a failure without one more achiever choice.
 
     When an attempt stops (no conflict-free place, a dead end, a loop), the choice the
     loop blames (btplan/planner/backjump.py) is banned and the attempt starts over from
     the initial state, up to `opts.retries` times; the choices given up are
     appended to `given_up`. Raises the first attempt's error when none succeeds.
+    `stalled` is asked right after the first attempt fails (the last resort's early
+    slice); a result it returns is taken.
     """
     banned: list[Choice] = []
     first: PlanningError | None = None
@@ -253,6 +247,9 @@ def _retrying(run: _Run, opts: PlannerOptions, given_up: list[Choice]) -> PlanRe
             raise
         except PlanningError as error:
             first = first or error
+            rescued = stalled() if stalled is not None and attempt == 0 else None
+            if rescued is not None:
+                return rescued
             fresh = [c for c in culprits if c not in banned]
             late = run.deadline is not None and time.perf_counter() > run.started + (
                 RETRY_SHARE * (run.deadline - run.started))

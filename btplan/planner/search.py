@@ -1,12 +1,21 @@
-"""The last resort for one stuck condition: a complete search, its plan made a subtree.
+"""The last resort: a complete search, for one stuck condition or for the whole goal.
 
 When backchaining finds no conflict-free place for the subtree achieving a condition,
 or every achiever of it is circular, the paper stops. btplan then searches, from the
 state the tree reached, for a plan that makes the condition true while keeping what
-the enclosing sequences already hold (greedy best-first search with h_FF, helpful
-actions first; Hoffmann and Nebel 2001), and btplan/planner/rescue.py turns that plan
-into a reactive subtree. The search sees every grounding of the relaxed model, so it is only
-bounded by its budget of states; it is the exception, and the summary counts it.
+the enclosing sequences already hold, and btplan/planner/rescue.py turns that plan
+into a reactive subtree; when backchaining fails as a whole, the same search plans the
+whole goal (btplan/acting/offline.py). The search sees every grounding of the relaxed
+model, so it is only bounded by its budget of states; it is the exception, and the
+summary counts it.
+
+The search is a satisficing planner's greedy best-first search (as in LAMA, Richter
+and Westphal 2010): deferred evaluation (a state is evaluated when taken from a queue,
+with its parent's estimate until then), two estimates (h_FF and the count of fact
+landmarks not yet reached on the path), and for each a second queue holding only the
+children of preferred actions (those of the relaxed plan that can run now); the
+queues take turns, and every time an estimate improves the preferred queues get
+BOOST turns ahead. States are ints (btplan/planner/packed.py).
 """
 
 from __future__ import annotations
@@ -14,107 +23,33 @@ from __future__ import annotations
 import heapq
 import itertools
 import time
-from collections import deque
 from collections.abc import Sequence
 
 from btplan.model import Atom, GroundAction, GroundLiteral
+from btplan.planner.packed import INFINITE, PackedActions, bits
 
 MAX_STATES = 2000
 """States expanded (each one h_FF evaluation) by one search before it gives up."""
 
+BOOST = 1000
+"""Turns the preferred queues get ahead each time an estimate improves (LAMA's value)."""
+
+Parents = dict[int, tuple[int, int] | None]
+
 
 class SubgoalSearch:
-    """Greedy best-first search with h_FF over a fixed list of grounded actions."""
+    """Lazy greedy best-first search with h_FF, landmarks and preferred actions."""
 
     def __init__(self, actions: Sequence[GroundAction]) -> None:
         self.actions = [a for a in actions if not a.delete_patterns]
+        self.packed = PackedActions(self.actions)
         self.expanded = 0
         """States the last search expanded (for the failure message)."""
         self.exhausted = False
         """Whether the last search ran out of states to look at (no plan exists)."""
-        self._ids: dict[Atom, int] = {}
-        self._pre: list[tuple[int, ...]] = []
-        self._add: list[tuple[int, ...]] = []
-        self._by_pre: dict[int, list[int]] = {}
-        self._anchor: dict[Atom, list[int]] = {}
-        self._free: list[int] = []
-        self._sizes: list[int] = []
-        for i, action in enumerate(self.actions):
-            positive = tuple(dict.fromkeys(p.atom for p in action.preconditions if p.positive))
-            pre = tuple(self._id(a) for a in positive)
-            self._pre.append(pre)
-            self._sizes.append(len(pre))
-            self._add.append(tuple(self._id(a) for a in action.add))
-            for atom in pre:
-                self._by_pre.setdefault(atom, []).append(i)
-            if positive:
-                self._anchor.setdefault(positive[0], []).append(i)
-            else:
-                self._free.append(i)
-
-    def _id(self, atom: Atom) -> int:
-        found = self._ids.get(atom)
-        if found is None:
-            found = self._ids[atom] = len(self._ids)
-        return found
-
-    def applicable(self, state: frozenset[Atom]) -> list[int]:
-        """Indices of the actions that can run in `state` (found through one precondition)."""
-        found = [i for i in self._free if self.actions[i].applicable(state)]
-        for atom in state:
-            for i in self._anchor.get(atom, ()):
-                if self.actions[i].applicable(state):
-                    found.append(i)
-        return found
-
-    def h_ff(self, state: frozenset[Atom], goal: Sequence[Atom]) -> tuple[float, set[int]]:
-        """The size of a relaxed plan from `state` to `goal`, and its actions.
-
-        A layered relaxed exploration (first achiever of each atom kept), then the
-        relaxed plan extracted backwards from the goal; infinite when unreachable.
-        """
-        ids = self._ids
-        reached: dict[int, int | None] = {ids[a]: None for a in state if a in ids}
-        targets = []
-        for atom in goal:
-            if atom not in state:
-                if atom not in ids:
-                    return float("inf"), set()
-                targets.append(ids[atom])
-        missing = set(targets)
-        waiting = list(self._sizes)
-        frontier = deque(reached)
-        for i in self._free:
-            self._fire(i, reached, frontier, missing)
-        while frontier and missing:
-            for i in self._by_pre.get(frontier.popleft(), ()):
-                waiting[i] -= 1
-                if waiting[i] == 0:
-                    self._fire(i, reached, frontier, missing)
-        if missing:
-            return float("inf"), set()
-        chosen: set[int] = set()
-        todo = list(targets)
-        done: set[int] = set()
-        while todo:
-            needed = todo.pop()
-            if needed in done:
-                continue
-            done.add(needed)
-            supporter = reached[needed]
-            if supporter is None or supporter in chosen:
-                continue
-            chosen.add(supporter)
-            todo.extend(self._pre[supporter])
-        return float(len(chosen)), chosen
-
-    def _fire(self, i: int, reached: dict[int, int | None], frontier: deque[int],
-              missing: set[int]) -> None:
-        for atom in self._add[i]:
-            if atom not in reached:
-                reached[atom] = i
-                frontier.append(atom)
-                missing.discard(atom)
+        self.use_landmarks = True
+        """Whether the landmark queues take part (off: h_FF and its preferred queue only)."""
+        self.boost = BOOST
 
     def search(
         self,
@@ -125,60 +60,55 @@ class SubgoalSearch:
         keep: Sequence[GroundLiteral] = (),
         max_stored: int | None = None,
     ) -> list[GroundAction] | None:
-        """A plan from `start` to a state where every goal literal holds, or None.
+        """A plan from `start` to a state where every goal literal holds, or None
+        (`begin` and one `SearchRun.resume`)."""
+        return self.begin(start, goal, max_states, keep, max_stored).resume(deadline)
 
-        `max_stored` bounds the states kept (each a set of atoms: memory, where
-        branching is wide).
+    def begin(
+        self,
+        start: frozenset[Atom],
+        goal: Sequence[GroundLiteral],
+        max_states: int = MAX_STATES,
+        keep: Sequence[GroundLiteral] = (),
+        max_stored: int | None = None,
+    ) -> SearchRun:
+        """A search from `start` to `goal`, to be resumed until it is done.
+
+        `max_stored` bounds the states kept, expanded or waiting (memory, where
+        branching is wide). A state reached again before it is expanded waits again
+        only when its new parent's h_FF is lower, and then takes that parent.
 
         No step may make a `keep` literal false: the plan runs where earlier siblings
         re-check their conditions on every tick, so undoing one would send the tree
         back to them.
 
-        Negative goal literals count for the heuristic only as satisfied or not (one
-        action each when not). Children of helpful actions (those of the relaxed plan
-        that can run now) are looked at first among equal estimates.
+        Negative goal literals count for the estimates only as satisfied or not (one
+        action each when not).
         """
-        positive = [g.atom for g in goal if g.positive]
-        negative = [g for g in goal if not g.positive]
+        return SearchRun(self, start, goal, max_states, keep, max_stored)
 
-        def estimate(state: frozenset[Atom]) -> tuple[float, set[int]]:
-            h, relaxed = self.h_ff(state, positive)
-            return h + sum(1 for g in negative if not g.holds(state)), relaxed
+    def banned(self, keep: Sequence[GroundLiteral]) -> set[int]:
+        """The actions that would make a `keep` literal false."""
+        if not keep:
+            return set()
+        packed = self.packed
+        held = packed.literal_mask(k.atom for k in keep if k.positive)
+        absent = packed.literal_mask(k.atom for k in keep if not k.positive)
+        return {i for i in range(len(self.actions))
+                if packed.del_mask[i] & held & ~packed.add_mask[i]
+                or packed.add_mask[i] & absent}
 
-        parents: dict[frozenset[Atom], tuple[frozenset[Atom], int] | None] = {start: None}
-        counter = itertools.count()
-        # Deferred evaluation: a child waits with its parent's estimate and is evaluated
-        # only when taken; children of helpful actions are taken first on ties.
-        queue: list[tuple[float, int, int, frozenset[Atom]]] = [(0.0, 0, next(counter), start)]
-        expanded = self.expanded = 0
-        self.exhausted = False
-        while queue and expanded < max_states:
-            _, _, _, state = heapq.heappop(queue)
-            if all(g.holds(state) for g in goal):
-                return self._path(parents, state)
-            h, helpful = estimate(state)
-            if h == float("inf"):
-                continue
-            expanded = self.expanded = expanded + 1
-            if deadline is not None and expanded % 32 == 0 and time.perf_counter() > deadline:
-                return None
-            if max_stored is not None and len(parents) > max_stored:
-                return None
-            for i in self.applicable(state):
-                if keep and any(_falsifies(self.actions[i], k) for k in keep):
-                    continue
-                child = self.actions[i].apply(state)
-                if child in parents:
-                    continue
-                parents[child] = (state, i)
-                heapq.heappush(queue, (h, 0 if i in helpful else 1, next(counter), child))
-        self.exhausted = not queue
-        return None
+    def improved(self, estimates: tuple[float, float], best: list[float],
+                 turns: list[int]) -> None:
+        """Note better estimates; each improvement moves the preferred queues ahead."""
+        for k, value in enumerate(estimates[:len(turns) // 2]):
+            if value < best[k]:
+                best[k] = value
+                for q in range(1, len(turns), 2):
+                    turns[q] -= self.boost
 
-    def _path(
-        self, parents: dict[frozenset[Atom], tuple[frozenset[Atom], int] | None],
-        state: frozenset[Atom],
-    ) -> list[GroundAction]:
+    def path(self, parents: Parents, state: int) -> list[GroundAction]:
+        """The actions from the start to `state`, by way of each state's parent."""
         steps: list[GroundAction] = []
         link = parents[state]
         while link is not None:
@@ -189,7 +119,111 @@ class SubgoalSearch:
         return steps
 
 
-def _falsifies(action: GroundAction, literal: GroundLiteral) -> bool:
-    if literal.positive:
-        return action.deletes(literal.atom)
-    return literal.atom in action.add
+
+class SearchRun:
+    """One search, which can stop at a deadline and go on later where it stopped.
+
+    Offline planning gives the whole-goal search a slice of time as soon as
+    backchaining's first strategy fails, and the rest after the other strategies.
+    """
+
+    def __init__(self, engine: SubgoalSearch, start: frozenset[Atom],
+                 goal: Sequence[GroundLiteral], max_states: int,
+                 keep: Sequence[GroundLiteral], max_stored: int | None) -> None:
+        self.engine = engine
+        self.max_states, self.max_stored = max_states, max_stored
+        self.done = False
+        """Whether the search is over: a plan found, no plan exists, or a bound reached."""
+        self.plan: list[GroundAction] | None = None
+        self.expanded = 0
+        self.exhausted = False
+        """Whether the search ran out of states to look at (no plan exists)."""
+        engine.expanded, engine.exhausted = 0, False
+        packed = engine.packed
+        test = packed.goal_test(goal, start)
+        first = packed.encode(start)
+        self.parents: Parents = {first: None}  # each state's best parent so far
+        self.reached: dict[int, int] = {}  # the landmarks each expanded state's path reached
+        self.keys: dict[int, float] = {first: 0.0}  # the h_FF each waiting state waits with
+        self.positive, self.negative, self.numbers = test or (0, 0, [])
+        if test is None:
+            self._finish(exhausted=True)
+        self.banned = engine.banned(keep) | packed.static_misses(start)
+        self.marks = (packed.landmarks(bits(first), self.numbers) & ~first
+                      if engine.use_landmarks and not self.done else 0)
+        self.queues: list[list[tuple[float, int, int, int, int]]] = [
+            [] for _ in range(4 if self.marks else 2)]
+        self.turns = [0] * len(self.queues)
+        self.best = [INFINITE] * 2
+        self.counter = itertools.count()
+        self.queues[0].append((0.0, next(self.counter), first, -1, -1))
+
+    def _finish(self, exhausted: bool = False, plan: list[GroundAction] | None = None) -> None:
+        self.done, self.exhausted, self.plan = True, exhausted, plan
+        self.engine.exhausted = exhausted
+
+    def resume(self, deadline: float | None = None) -> list[GroundAction] | None:
+        """Search on until a plan is found (returned), the search is over, or `deadline`."""
+        packed, engine = self.engine.packed, self.engine
+        positive, negative, numbers, marks = self.positive, self.negative, self.numbers, self.marks
+        queues, turns, parents, reached = self.queues, self.turns, self.parents, self.reached
+        keys = self.keys
+        while not self.done:
+            chosen = _turn(queues, turns)
+            if chosen is None:
+                self._finish(exhausted=True)
+                break
+            _, _, state, parent, action = heapq.heappop(queues[chosen])
+            if state in reached:
+                continue
+            if state & positive == positive and not state & negative:
+                self._finish(plan=engine.path(parents, state))
+                break
+            true = bits(state)
+            h, relaxed = packed.h_ff(true, numbers)
+            if h == INFINITE:
+                reached[state] = 0  # a dead end: never looked at again
+                continue
+            h += bin(state & negative).count("1")
+            passed = reached[state] = (0 if parent < 0 else reached[parent]) | (state & marks)
+            estimates = (h, (bin(marks & ~passed).count("1")
+                             + bin(positive & passed & ~state).count("1")) if marks else h)
+            engine.improved(estimates, self.best, turns)
+            self.expanded = engine.expanded = self.expanded + 1
+            if self.expanded >= self.max_states or (
+                    self.max_stored is not None and len(parents) > self.max_stored):
+                self._finish()
+                break
+            for i in packed.applicable(state, true):
+                if i in self.banned:
+                    continue
+                child = packed.apply(i, state)
+                if child in parents and (child in reached or keys[child] <= h):
+                    continue  # waiting already, from a parent estimated no worse
+                parents[child], keys[child] = (state, i), h
+                number = next(self.counter)
+                for q in range(0, len(queues), 2):
+                    estimate = estimates[q // 2]
+                    heapq.heappush(queues[q], (estimate, number, child, state, i))
+                    if i in relaxed:
+                        heapq.heappush(queues[q + 1], (estimate, number, child, state, i))
+            if deadline is not None and self.expanded % 32 == 0 \
+                    and time.perf_counter() > deadline:
+                break
+        return self.plan
+
+    @property
+    def stored(self) -> int:
+        """States kept, expanded or waiting."""
+        return len(self.parents)
+
+
+def _turn(queues: list[list[tuple[float, int, int, int, int]]], turns: list[int]) -> int | None:
+    """The non-empty queue whose turn it is (fewest turns taken, boosts counted)."""
+    chosen = None
+    for q, queue in enumerate(queues):
+        if queue and (chosen is None or turns[q] < turns[chosen]):
+            chosen = q
+    if chosen is not None:
+        turns[chosen] += 1
+    return chosen

@@ -1,0 +1,95 @@
+"""The last resort for the whole task: a plan for the whole goal, searched for from the
+initial state, for btplan/acting/offline.py to put behind the goal tree.
+
+The search is begun once and resumed: offline planning gives it a slice of the time
+as soon as backchaining's first attempt has failed (backchaining is visibly stuck, and
+retries and later strategies rarely do better), and whatever is left once every
+strategy has failed. h^2 is asked first whether the goal can hold at all.
+"""
+
+from __future__ import annotations
+
+import time
+
+from btplan.model import GroundAction, Task
+from btplan.planner import AchieverIndex
+from btplan.planner.search import SearchRun
+from btplan.worlds.symbolic import SymbolicWorld
+
+WHOLE_STATES = 1_000_000
+"""States the whole-goal search may expand; the time limit usually comes first."""
+
+WHOLE_STORED = 2_000_000
+"""States the whole-goal search may keep, expanded or waiting: a few hundred bytes
+each as packed ints (child-snack's states have a thousand successors)."""
+
+EARLY_SHARE = 0.5
+"""The share of the time left that the search gets in its early slice."""
+
+
+class WholeGoalSearch:
+    """The whole-goal search of one planning call, begun when first needed."""
+
+    def __init__(self, task: Task, models: AchieverIndex, seed: int) -> None:
+        self.task, self.models, self.seed = task, models, seed
+        self.proof: str | None = None
+        """Why no plan exists, when h^2 proves it (then nothing is searched)."""
+        self._run: SearchRun | None = None
+        self._checked = False
+
+    def resume(self, until: float | None) -> list[GroundAction] | None:
+        """Search on until a plan is found (returned), the search is over, or `until`."""
+        if not self._checked:
+            self._checked = True
+            self.proof = unsolvable(self.task, self.models)
+        if self.proof is not None:
+            return None
+        if self._run is None:
+            start = SymbolicWorld(self.task, seed=self.seed).facts()
+            self._run = self.models.subgoal_search.begin(
+                start, list(self.task.goal_literals), max_states=WHOLE_STATES,
+                max_stored=WHOLE_STORED)
+        if self._run.done:
+            return self._run.plan
+        return self._run.resume(until)
+
+    def why(self, deadline: float | None) -> str:
+        """Why no plan was found, and after how many states."""
+        run = self._run
+        if run is None:
+            return "not begun"
+        reason = ("no plan exists" if run.exhausted
+                  else "time limit reached" if not run.done and deadline is not None
+                  and time.perf_counter() > deadline
+                  else "bound of stored or expanded states reached" if run.done
+                  else "stopped")
+        return f"{reason} after {run.expanded} states"
+
+
+class EarlySlice:
+    """The whole-goal search's early slice, taken once, when the first attempt fails."""
+
+    def __init__(self, last: WholeGoalSearch, deadline: float) -> None:
+        self.last, self.deadline = last, deadline
+        self.taken = False
+
+    def take(self) -> list[GroundAction] | None:
+        """Search for EARLY_SHARE of the time left (once); the plan, if one is found."""
+        if self.taken:
+            return None
+        self.taken = True
+        now = time.perf_counter()
+        return self.last.resume(now + (self.deadline - now) * EARLY_SHARE)
+
+
+def unsolvable(task: Task, models: AchieverIndex) -> str | None:
+    """Why the goal can never hold, when h^2 proves it (the search would be in vain)."""
+    goals = [g for g in task.goal_literals if g.positive]
+    for goal in goals:
+        if models.mutexes.unreachable(goal.atom):
+            return f"{goal} can never hold (h^2 mutexes)"
+    for i, first in enumerate(goals):
+        for second in goals[i + 1:]:
+            if models.mutexes.exclusive(first, second):
+                return f"{first} and {second} can never hold together (h^2 mutexes)"
+    return None

@@ -1,0 +1,155 @@
+"""The last-resort search as a satisficing planner: packed states, fact landmarks, the
+preferred queues and their boost, a search that pauses and goes on, and the early
+slice the whole-goal search gets once backchaining's first strategy has failed.
+
+Small generated problems; the counts compared are states expanded, never times.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import btplan.acting.offline as offline
+from btplan.acting.offline import load, plan
+from btplan.errors import NoAchieverError
+from btplan.lang import load as load_paths
+from btplan.lang.generators import generate
+from btplan.model import Atom, GroundLiteral, Task
+from btplan.planner import AchieverIndex, PlannerOptions
+from btplan.planner.packed import bits
+from tests.planner.shapes import DOMAINS
+from tests.planner.test_classic import validate
+
+TOGGLE = """
+(define (domain toggle)
+  (:requirements :strips :negative-preconditions)
+  (:predicates (a) (b) (s) (off))
+  (:action flip :parameters () :precondition (and (a) (s) (not (off)))
+     :effect (and (not (a)) (a) (b))))
+"""
+
+
+def toggle(tmp_path: Path, init: str) -> Task:
+    (tmp_path / "domain.pddl").write_text(TOGGLE)
+    (tmp_path / "problem.pddl").write_text(
+        f"(define (problem t) (:domain toggle) (:init {init}) (:goal (and (a) (b))))")
+    return load(str(tmp_path / "domain.pddl"), str(tmp_path / "problem.pddl"))
+
+
+def blocks(tmp_path: Path, count: int, seed: int) -> Task:
+    domain, problem = generate("blocksworld", seed=seed, blocks=count)
+    (tmp_path / "domain.pddl").write_text(domain)
+    (tmp_path / "problem.pddl").write_text(problem)
+    return load_paths([str(tmp_path / "domain.pddl"), str(tmp_path / "problem.pddl")])
+
+
+def atom(text: str) -> Atom:
+    name, _, rest = text.partition("(")
+    return Atom(name, tuple(a.strip() for a in rest.rstrip(")").split(",") if a.strip()))
+
+
+def test_a_packed_action_deletes_before_it_adds_and_tests_negative_preconditions(
+        tmp_path: Path) -> None:
+    task = toggle(tmp_path, "(a) (s)")
+    engine = AchieverIndex(task).subgoal_search
+    packed = engine.packed
+    start = packed.encode(task.initial_state)
+    assert packed.applicable(start, bits(start)) == [0]
+    after = packed.apply(0, start)
+    assert after & packed.literal_mask([atom("a()"), atom("b()")]) == packed.literal_mask(
+        [atom("a()"), atom("b()")])  # a deleted and added: true, as PDDL has it
+    with_off = start | packed.literal_mask([atom("off()")])
+    assert packed.applicable(with_off, bits(with_off)) == []
+    assert [str(a) for a in engine.search(task.initial_state, task.goal_literals) or []] \
+        == ["flip()"]
+
+
+def test_a_precondition_nothing_changes_holds_only_where_the_start_has_it(
+        tmp_path: Path) -> None:
+    # s is read by flip and changed by nothing: it gets no bit, and a start without it
+    # rules flip out.
+    task = toggle(tmp_path, "(a) (s)")
+    engine = AchieverIndex(task).subgoal_search
+    assert atom("s()") not in engine.packed.ids
+    assert engine.search(task.initial_state, task.goal_literals) is not None
+    assert engine.search(task.initial_state - {atom("s()")}, task.goal_literals) is None
+    assert engine.exhausted
+
+
+def test_fact_landmarks_are_what_every_relaxed_plan_passes_through() -> None:
+    task = load(str(DOMAINS / "planner_sussman.bt"))  # c on a; a and b on the table
+    packed = AchieverIndex(task).subgoal_search.packed
+    start = packed.encode(task.initial_state)
+    goal = [packed.ids[atom("on(a, b)")]]
+    marks = packed.landmarks(bits(start), goal)
+    # To stack a on b, a is held, and before that a is cleared: c comes off a.
+    for needed in ("on(a, b)", "holding(a)", "clear(a)"):
+        assert marks & 1 << packed.ids[atom(needed)], needed
+    # b may be held or not: no plan needs it.
+    assert not marks & 1 << packed.ids[atom("holding(b)")]
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_boosting_the_preferred_queues_expands_fewer_states(tmp_path: Path, seed: int) -> None:
+    task = blocks(tmp_path, 20, seed)
+    expanded = []
+    for boost in (1000, 0):
+        engine = AchieverIndex(task).subgoal_search
+        engine.boost = boost
+        steps = engine.search(task.initial_state, task.goal_literals, max_states=1000)
+        expanded.append(engine.expanded)
+        if steps is not None:
+            validate(task, steps)
+    boosted, even = expanded
+    assert boosted < 400
+    assert boosted * 2 < even
+
+
+def test_landmarks_take_part_only_when_the_goal_has_some_beyond_the_start(
+        tmp_path: Path) -> None:
+    task = blocks(tmp_path, 12, 1)
+    engine = AchieverIndex(task).subgoal_search
+    run = engine.begin(task.initial_state, task.goal_literals)
+    assert run.marks and len(run.queues) == 4
+    done = engine.begin(task.initial_state, [GroundLiteral(a) for a in
+                                             sorted(task.initial_state)[:1]])
+    assert not done.marks and len(done.queues) == 2
+    assert done.resume() == []
+
+
+def test_a_search_paused_at_a_deadline_goes_on_where_it_stopped(tmp_path: Path) -> None:
+    task = blocks(tmp_path, 20, 0)
+    engine = AchieverIndex(task).subgoal_search
+    whole = engine.search(task.initial_state, task.goal_literals)
+    run = engine.begin(task.initial_state, task.goal_literals)
+    pauses = 0
+    while run.resume(deadline=0.0) is None and not run.done:  # a deadline long past
+        pauses += 1
+        assert run.expanded == 32 * pauses  # the clock is read every 32 states
+    assert pauses >= 2
+    assert run.plan == whole
+
+
+def test_the_whole_goal_search_starts_when_the_first_attempt_fails(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    task = load(str(DOMAINS / "planner_sussman.bt"))
+    attempt = offline._attempt
+    tried = []
+
+    def failing(run: object, opts: object, *args: object, **kwargs: object) -> object:
+        if kwargs.get("plan") is not None:  # the tree with the searched plan behind it
+            return attempt(run, opts, *args, **kwargs)  # type: ignore[arg-type]
+        tried.append(opts)
+        raise NoAchieverError("stuck")
+
+    monkeypatch.setattr(offline, "_attempt", failing)
+    result = plan(task, timeout=60)  # with a time limit: its slice comes at once
+    assert result.stats.whole_goal and len(tried) == 1
+    validate(task, result.executed)
+    tried.clear()
+    result = plan(task)  # without one: after every strategy (one attempt each), as before
+    assert result.stats.whole_goal
+    assert len(tried) == len(offline.fallback_strategies(PlannerOptions())) + 1
+
