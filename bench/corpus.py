@@ -156,7 +156,10 @@ def compile_btplan() -> None:
 
     import btplan
 
-    compileall.compile_dir(str(Path(btplan.__file__).parent), quiet=1)
+    package = Path(btplan.__file__).parent
+    compileall.compile_dir(str(package), quiet=1)
+    print(f"btplan's bytecode compiled first ({package}), as pip compiles an installed "
+          "package: no btplan process compiles its sources while timed", flush=True)
 
 
 def available(planners: list[str]) -> list[str]:

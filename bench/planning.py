@@ -18,6 +18,12 @@ are validated against the domain before they count as solved.
     python bench/planning.py --scale blocksworld --sizes 50,100,200 --timeout 300
                                                     # growing generated problems, whole
                                                     # processes, beside peers (bench/scaling.py)
+
+Before timing whole processes (--corpus, --scale) the bench compiles btplan's bytecode
+into its __pycache__ folders, as pip does when it installs a package: from an editable
+checkout, with PYTHONDONTWRITEBYTECODE set, every btplan process would otherwise compile
+its sources again, while pyperplan, installed by pip, loads bytecode. The run says so in
+its first line.
 """
 
 from __future__ import annotations

@@ -12,6 +12,7 @@ from __future__ import annotations
 import time
 from collections import Counter
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 from btplan.acting.ahead import later_false
 from btplan.acting.choice import achievers_for
@@ -52,11 +53,12 @@ from btplan.planner import (
 )
 from btplan.planner.achievers import guards
 from btplan.planner.agenda import goal_agenda
-from btplan.planner.backjump import Choice, conflict_choices, enclosing_choices, running_choices
 from btplan.planner.expand import condition_node, goal_check, guard_nodes
 from btplan.planner.lookahead import closest_first
-from btplan.planner.protect import white_knights
-from btplan.planner.rescue import Rescuer
+
+if TYPE_CHECKING:  # backjump (blame), protect (an option) and rescue: when first used
+    from btplan.planner.backjump import Choice
+    from btplan.planner.rescue import Rescuer
 
 __all__ = ["BlendedLoop", "Expansion", "RunResult", "TickReport"]
 
@@ -195,6 +197,8 @@ class BlendedLoop:
         if self._circles.repeated(self.world, before, after, len(self.expansions)):
             executed = getattr(self.world, "executed", [])
             if executed:  # the same state under the same tree: drop what ran in the loop
+                from btplan.planner.backjump import running_choices
+
                 self.culprits = running_choices(self.tree.root, executed[-1].key)
             raise NoProgressError(loop_reason(len(self.expansions), self.world))
         self._last_state = after
@@ -215,6 +219,8 @@ class BlendedLoop:
                 if searched is not None:
                     return searched
                 if self._tally[literal] >= self._round_limit and self.options.refine_more:
+                    from btplan.planner.backjump import enclosing_choices
+
                     self.culprits = enclosing_choices(node)
                     raise NoProgressError(
                         f"{literal} was expanded {self._tally[literal]} times: the tree goes "
@@ -237,6 +243,8 @@ class BlendedLoop:
             if searched is not None:
                 return searched
         if missing:
+            from btplan.planner.backjump import enclosing_choices
+
             self.culprits = list(dict.fromkeys(c for n in stuck for c in enclosing_choices(n)))
             raise NoAchieverError(no_achiever_reason(missing, self.index, self.circular, len(self.expansions),
                                                      self.world))
@@ -292,6 +300,8 @@ class BlendedLoop:
                 )
             except UnresolvableConflictError as error:
                 if first is None:
+                    from btplan.planner.backjump import conflict_choices
+
                     first = error
                     self.culprits = conflict_choices(subtree, self.judge())
                 _unexpand(self.tree, subtree, node)
@@ -324,6 +334,8 @@ class BlendedLoop:
 
     def _protect(self, subtree: Fallback) -> None:
         """Check, before each new achiever, what keeps the other goals reachable."""
+        from btplan.planner.protect import white_knights  # an option, off by default
+
         state = self.world.facts()
         for alternative in subtree.children[1:]:
             last = alternative.children[-1] if alternative.children else None

@@ -22,11 +22,11 @@ from btplan.bt import BehaviorTree, LeafKey
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex, PlannerOptions
-from btplan.planner.backjump import Choice
 from btplan.records import field, record, replace
 from btplan.worlds.symbolic import SymbolicWorld
 
 if TYPE_CHECKING:
+    from btplan.planner.backjump import Choice
     from btplan.acting.online import RunOutcome as RunOutcome  # noqa: PLC0414
     from btplan.acting.online import run as run  # noqa: PLC0414
 

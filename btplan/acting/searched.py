@@ -10,7 +10,6 @@ from __future__ import annotations
 from btplan.acting.state import Expansion, LoopState
 from btplan.bt import Node
 from btplan.model import GroundAction
-from btplan.planner.rescue import Rescuer, plan_whole_goal
 
 
 def search_stuck(loop: LoopState, node: Node) -> Expansion | None:
@@ -19,6 +18,8 @@ def search_stuck(loop: LoopState, node: Node) -> Expansion | None:
     if not options.search_stuck:
         return None
     if loop.rescuer is None:
+        from btplan.planner.rescue import Rescuer  # imported only when something is stuck
+
         mutexes = index.mutexes if options.mutexes else None
         loop.rescuer = Rescuer(loop.task, index.subgoal_search, mutexes)
     rescued = loop.rescuer.rescue(loop.tree, node, loop.world.facts(), loop.deadline)
@@ -31,6 +32,8 @@ def search_stuck(loop: LoopState, node: Node) -> Expansion | None:
 
 def adopt_plan(loop: LoopState, steps: list[GroundAction]) -> None:
     """Put a plan for the whole goal behind the goal tree (`plan_whole_goal`)."""
+    from btplan.planner.rescue import plan_whole_goal
+
     _adopt(loop, steps, plan_whole_goal(loop.tree, loop.task, steps))
 
 

@@ -8,14 +8,16 @@ see the loop through `LoopState`, so that none of them imports the loop itself.
 
 from __future__ import annotations
 
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 from btplan.bt import BehaviorTree, LeafKey, Node, Status
 from btplan.model import GroundAction, GroundLiteral, Task
 from btplan.planner import AchieverIndex, Judge, PlannerOptions, PlanningWorld
-from btplan.planner.backjump import Choice
-from btplan.planner.rescue import Rescuer
 from btplan.records import field, record
+
+if TYPE_CHECKING:
+    from btplan.planner.backjump import Choice
+    from btplan.planner.rescue import Rescuer
 
 
 @record

@@ -1,8 +1,16 @@
-"""Behavior Tree nodes, the tick engine and the formats trees are saved in."""
+"""Behavior Tree nodes, the tick engine and the formats trees are saved in.
+
+`StrictWorld`, `LeafContractError` (btplan/bt/debug.py, for `--debug`) and `Parallel`
+are imported on first use (PEP 562): trees grown by backchaining need neither.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
 
 from btplan.bt.blackboard import Blackboard, NodeError
 from btplan.bt.composites import Fallback, Sequence
-from btplan.bt.debug import LeafContractError, StrictWorld
 from btplan.bt.decorators import (
     Decorator,
     ForceFailure,
@@ -13,7 +21,6 @@ from btplan.bt.decorators import (
 )
 from btplan.bt.leaves import Action, Condition, Leaf
 from btplan.bt.node import Composite, Node
-from btplan.bt.parallel import Parallel
 from btplan.bt.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 from btplan.bt.trace import (
     NodeTick,
@@ -25,6 +32,19 @@ from btplan.bt.trace import (
 )
 from btplan.bt.tree import BehaviorTree
 from btplan.bt.world import LeafKey, World
+
+if TYPE_CHECKING:
+    from btplan.bt.debug import LeafContractError, StrictWorld
+    from btplan.bt.parallel import Parallel
+
+_HOMES = {"LeafContractError": "debug", "StrictWorld": "debug", "Parallel": "parallel"}
+
+
+def __getattr__(name: str) -> Any:
+    home = _HOMES.get(name)
+    if home is None:
+        raise AttributeError(f"module 'btplan.bt' has no attribute {name!r}")
+    return getattr(importlib.import_module(f"btplan.bt.{home}"), name)
 
 __all__ = [
     "FAILURE", "IDLE", "RUNNING", "SKIPPED", "SUCCESS", "Action", "BehaviorTree", "Blackboard",

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Protocol
 
-from btplan.bt.debug import StrictWorld
 from btplan.bt.node import Node
 from btplan.bt.status import Status
 from btplan.bt.world import World
@@ -45,6 +44,8 @@ class BehaviorTree:
     def tick(self, world: World) -> Status:
         self.ticks += 1
         if self.debug:
+            from btplan.bt.debug import StrictWorld  # only with --debug
+
             world = StrictWorld(world)
         if self.recorder is not None:
             return self.recorder.tick(self, world)

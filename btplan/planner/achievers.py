@@ -9,6 +9,7 @@ matching effect is unified with the condition, the remaining parameters are boun
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from btplan.model import (
     WILDCARD,
@@ -26,7 +27,9 @@ from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
 from btplan.planner.options import PlannerOptions
 from btplan.planner.protocol import Refiner
-from btplan.planner.search import SubgoalSearch
+
+if TYPE_CHECKING:
+    from btplan.planner.search import SubgoalSearch
 
 ALL = 1 << 30
 """A limit on achievers that keeps them all."""
@@ -95,6 +98,8 @@ class AchieverIndex:
         """The last-resort search over the relaxed model's groundings, built on first use."""
         shared = self._shared
         if shared.search is None:
+            from btplan.planner.search import SubgoalSearch  # the last resort: rarely needed
+
             shared.search = SubgoalSearch(self.relaxed.actions)
         return shared.search
 

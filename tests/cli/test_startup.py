@@ -20,7 +20,9 @@ HEAVY = ("rich", "pydantic", "pybullet", "numpy", "matplotlib", "email", "import
          "btplan.bt.formats.btcpp", "btplan.bt.formats.saved", "btplan.acting.live_view",
          "btplan.sweep", "btplan.worlds.pybullet", "typer", "click",
          "dataclasses", "inspect", "tempfile", "difflib", "traceback", "importlib.resources",
-         "random", "btplan.lang.writers")
+         "random", "btplan.lang.writers", "btplan.planner.search", "btplan.planner.rescue",
+         "btplan.planner.backjump", "btplan.planner.protect", "btplan.bt.debug",
+         "btplan.bt.parallel")
 """Modules (and their submodules) that neither start-up nor `btplan plan` of well-formed
 PDDL needs (lark builds parsers: it reads .bt files and words PDDL syntax errors; typer
 builds the command line for help, errors and the other commands, cli/lean.py). The
@@ -28,7 +30,10 @@ standard library's share: dataclasses (and inspect beneath it) compile every cla
 methods at import, which btplan/records.py avoids; tempfile, difflib (for "did you
 mean"), traceback (for --debug) and importlib.resources (for shipped domains by name)
 serve only other paths, random only worlds that fail actions on purpose, and btplan's
-writers only messages about mistakes."""
+writers only messages about mistakes. Of the planner, the last-resort search and what
+turns its plan into a subtree (search, rescue), the blame of choices when planning stops
+(backjump), the `protect_goals` option (protect), `--debug`'s strict world and Parallel
+nodes are imported when first used."""
 
 REPORT = """
 import json, sys

@@ -10,16 +10,19 @@ tests/bt/test_saved_json.py checks that the two agree), in the models' field ord
 from __future__ import annotations
 
 import json
-from typing import Any
+import sys
+from typing import TYPE_CHECKING, Any, cast
 
 from btplan.bt.composites import Fallback, Sequence
 from btplan.bt.decorators import Retry, Timeout
 from btplan.bt.leaves import Leaf, leaf_label
 from btplan.bt.node import Node
-from btplan.bt.parallel import Parallel
 from btplan.bt.status import IDLE
 from btplan.bt.tree import BehaviorTree
 from btplan.errors import InputError
+
+if TYPE_CHECKING:
+    from btplan.bt.parallel import Parallel
 
 FORMAT = "btplan-tree"
 VERSION = 1
@@ -60,7 +63,8 @@ def node_data(node: Node, with_status: bool) -> dict[str, Any]:
         data["attempts"] = node.attempts
     if isinstance(node, Timeout) and node.ticks != 1:
         data["ticks"] = node.ticks
-    if isinstance(node, Parallel):
+    parallel = _parallel()
+    if parallel is not None and isinstance(node, parallel):
         if node.success != -1:
             data["success"] = node.success
         if node.failure != 1:
@@ -70,6 +74,13 @@ def node_data(node: Node, with_status: bool) -> dict[str, Any]:
     if node.children:
         data["children"] = [node_data(c, with_status) for c in node.children]
     return data
+
+
+def _parallel() -> type[Parallel] | None:
+    """The Parallel class if its module was imported; before that no Parallel node exists,
+    and trees grown by backchaining (which have none) are written without importing it."""
+    module = sys.modules.get("btplan.bt.parallel")
+    return None if module is None else cast("type[Parallel]", module.Parallel)
 
 
 def tree_data(tree: BehaviorTree, with_status: bool = False) -> dict[str, Any]:
