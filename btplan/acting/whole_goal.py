@@ -10,11 +10,14 @@ strategy has failed. h^2 is asked first whether the goal can hold at all.
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING
 
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex
-from btplan.planner.search import SearchRun
 from btplan.worlds.symbolic import SymbolicWorld
+
+if TYPE_CHECKING:  # the search is loaded only when a plan run needs it
+    from btplan.planner.search import SearchRun
 
 WHOLE_STATES = 1_000_000
 """States the whole-goal search may expand; the time limit usually comes first."""
