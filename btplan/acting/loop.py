@@ -58,7 +58,7 @@ from btplan.planner.expand import (
 )
 from btplan.planner.lookahead import closest_first, keep_reachable, needed_later
 from btplan.planner.protect import white_knights
-from btplan.planner.agenda import goal_agenda
+from btplan.planner.agenda import goal_agenda, state_orders
 from btplan.planner.rescue import Rescuer, plan_whole_goal
 
 STUCK_EXPANSIONS = 8
@@ -156,8 +156,11 @@ class BlendedLoop:
         self.index = AchieverIndex(task, self.options, like)
         order = None
         if self.options.goal_agenda and self.options.mutexes and len(task.goal_literals) > 1:
-            order = goal_agenda(task.goal_literals, self.index.relaxed.producers,
-                                self.index.mutexes)
+            relaxed = self.index.relaxed
+            extra = state_orders(task.goal_literals, self.index.mutexes, relaxed,
+                                 task.initial_state) if self.options.state_agenda else None
+            order = goal_agenda(task.goal_literals, relaxed.producers, self.index.mutexes,
+                                extra)
         self.tree = initial_tree(task, order)
         self.grounding: dict[LeafKey, GroundAction] = {}
         self.expansions: list[Expansion] = []
