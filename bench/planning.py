@@ -284,16 +284,24 @@ def main() -> None:
     parser.add_argument("--scale", metavar="DOMAINS",
                         help="comma-separated generated domains, grown until a planner fails, "
                              "each planner a whole process (--planners, --sizes, --plot)")
+    parser.add_argument("--save", help="with --scale: keep the points as JSON here")
+    parser.add_argument("--replot", metavar="FILES",
+                        help="comma-separated JSON files of --save: report and --plot them")
     args = parser.parse_args()
-    if args.scale:
+    if args.scale or args.replot:
         import scaling
 
         planners = args.planners.split(",")
-        names = args.scale.split(",")
-        sizes = dict(scaling.SIZES)
-        if args.sizes:
-            sizes.update({d: [int(x) for x in args.sizes.split(",")] for d in names})
-        points = scaling.scale(names, sizes, planners, args.timeout)
+        if args.replot:
+            points = scaling.load_points(args.replot.split(","))
+        else:
+            names = args.scale.split(",")
+            sizes = dict(scaling.SIZES)
+            if args.sizes:
+                sizes.update({d: [int(x) for x in args.sizes.split(",")] for d in names})
+            points = scaling.scale(names, sizes, planners, args.timeout)
+            if args.save:
+                scaling.save(points, args.save)
         print()
         print("\n".join(scaling.report(points, planners, args.timeout)))
         if args.plot:

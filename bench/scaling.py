@@ -7,13 +7,17 @@ start to exit, the validated plan length and the peak RSS (kernel, wait4).
 
     python bench/planning.py --scale blocksworld --sizes 10,20,40,70,100,200 --timeout 300
     python bench/planning.py --scale gripper,logistics --plot docs/scaling.png
+
+Each run's points can be kept (`--save run.json`) and drawn together later, when the
+domains need different time limits (`--replot a.json,b.json --plot docs/scaling.png`).
 """
 
 from __future__ import annotations
 
+import json
 import statistics
 import tempfile
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from corpus import Run, available, cell, run_one
@@ -55,6 +59,21 @@ def scale(domains: list[str], sizes: dict[str, list[int]], planners: list[str], 
                 points.append(Point(name, size, runs))
                 print(f"{name:<12} {size:>4} " + " | ".join(
                     f"{p}: {cell(r)}" for p, r in runs.items()), flush=True)
+    return points
+
+
+def save(points: list[Point], path: str) -> None:
+    """The points as JSON, to be drawn with others (`load_points`)."""
+    Path(path).write_text(json.dumps([asdict(p) for p in points], indent=1))
+
+
+def load_points(paths: list[str]) -> list[Point]:
+    """Points saved by `save`, from every file in turn."""
+    points: list[Point] = []
+    for path in paths:
+        for item in json.loads(Path(path).read_text()):
+            runs = {name: Run(**run) for name, run in item["runs"].items()}
+            points.append(Point(item["domain"], item["size"], runs))
     return points
 
 

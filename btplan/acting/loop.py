@@ -52,7 +52,7 @@ from btplan.planner import (
     resolve_conflicts,
 )
 from btplan.planner.achievers import guards
-from btplan.planner.agenda import goal_agenda
+from btplan.planner.agenda import goal_agenda, state_orders
 from btplan.planner.expand import condition_node, goal_check, guard_nodes
 from btplan.planner.lookahead import closest_first
 
@@ -127,8 +127,11 @@ class BlendedLoop:
         self.index = AchieverIndex(task, self.options, like)
         order = None
         if self.options.goal_agenda and self.options.mutexes and len(task.goal_literals) > 1:
-            order = goal_agenda(task.goal_literals, self.index.relaxed.producers,
-                                self.index.mutexes)
+            relaxed = self.index.relaxed
+            extra = state_orders(task.goal_literals, self.index.mutexes, relaxed,
+                                 task.initial_state) if self.options.state_agenda else None
+            order = goal_agenda(task.goal_literals, relaxed.producers, self.index.mutexes,
+                                extra)
         self.tree = initial_tree(task, order)
         self.grounding: dict[LeafKey, GroundAction] = {}
         self.expansions: list[Expansion] = []

@@ -97,8 +97,9 @@ def plan(
     """Backchain a BT for `task` by planning and acting in the symbolic world.
 
     Without explicit `options`, the fallback strategies run without the last-resort
-    search; with `last_resort`, the default options with it come second, right after
-    the default options without it (a stuck condition is then planned by search), and
+    search; with `last_resort`, the default options with it come right after the
+    default options without it and the goal order of the initial state (a stuck
+    condition is then planned by search), and
     when every strategy fails, a plan for the whole goal is searched from the initial
     state and put behind the goal tree (with a time limit, backchaining has
     BACKCHAIN_SHARE of it). Explicit options run as they are.
@@ -116,8 +117,9 @@ def plan(
         strategies = [opts]
     else:
         strategies = fallback_strategies(replace(opts, search_stuck=False))
-        if last_resort:  # right after the default: later strategies may use up the time
-            strategies.insert(1, opts)
+        if last_resort:  # early: later strategies may use up the time
+            at = 2 if len(strategies) > 1 and strategies[1].state_agenda else 1
+            strategies.insert(at, opts)
     models = AchieverIndex(task)  # the relaxed model and mutexes, built once for all
     whole = last_resort and options is None
     soft = deadline
@@ -277,8 +279,9 @@ def _choices(choices: list[Choice], shown: int = 3) -> str:
 
 
 def fallback_strategies(options: PlannerOptions) -> list[PlannerOptions]:
-    """The default options, then the paper's breadth-first expansion order, wider
-    fallbacks, no goal reordering, protected goals.
+    """The default options, then the goal order the initial state imposes
+    (`state_agenda`), the paper's breadth-first expansion order, wider fallbacks, no
+    goal reordering, protected goals.
 
     Backchaining commits to the achievers it ranked best in the state it expanded
     in; when that leads nowhere, starting over with the breadth-first choice of the
@@ -291,6 +294,7 @@ def fallback_strategies(options: PlannerOptions) -> list[PlannerOptions]:
     """
     return [
         options,
+        *([replace(options, state_agenda=True)] if options.goal_agenda else []),
         *([replace(options, closest_first=False)] if options.closest_first else []),
         replace(options, max_alternatives=options.max_alternatives * 2),
         replace(options, reorder_goals=False),

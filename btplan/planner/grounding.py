@@ -10,6 +10,7 @@ parameter is asked of the refiner (the world backend) instead of enumerated.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Container, Iterator, Mapping
 
 from btplan.model import EQUALITY, ActionTemplate, Atom, Literal, Parameter, Task
@@ -80,9 +81,12 @@ def bindings(
     (the atoms reachable from the state, ignoring deletes), a positive precondition on
     a changing predicate must be among them: such a binding could never run, and
     enumerating it would use up `limit` before the bindings that can (a sandwich made
-    of bread already eaten). Then, too, the values with which more of these
-    preconditions hold now are tried first: with more bindings than `limit`, the one that can run at once
-    (unstack(b9, b19) with b9 on b19, where b9 sorts after b64) must not be cut.
+    of bread already eaten). Then, too, the values that make these preconditions
+    cheapest to reach are tried first (h_add, when `reachable` maps atoms to their
+    costs; otherwise the values with which more of them hold now): with more bindings
+    than `limit`, the one that can run soonest must not be cut (unstack(b9, b19) with b9
+    on b19, where b9 sorts after b64; unstack(b92, b150) with b92 on b150 but not clear,
+    beside 74 clear blocks that all tie on "one precondition holds now").
     """
     table = objects or Objects(task)
     refined = {p.name for p in template.parameters if p.refined}
@@ -115,6 +119,8 @@ def bindings(
         if parameter.refined:
             return list(table.of(parameter.type)) or [PLACEHOLDER]
         values = _supported(table, positive, binding, parameter.name, types, state)
+        if isinstance(reachable, Mapping):
+            return _cheapest_first(hopes, binding, parameter.name, types, reachable, values)
         return _now_first(table, hopes, binding, parameter.name, types, state, values)
 
     def extend(binding: dict[str, str], depth: int) -> Iterator[dict[str, str]]:
@@ -206,6 +212,42 @@ def _now_first(
     if not holding:
         return values
     return sorted(values, key=lambda v: -holding.get(v, 0))
+
+
+def _cheapest_first(
+    hopes: tuple[Literal, ...],
+    binding: Mapping[str, str],
+    name: str,
+    types: Mapping[str, str],
+    costs: Mapping[Atom, float],
+    values: list[str],
+) -> list[str]:
+    """`values`, cheapest first (stable): by the summed h_add cost of the preconditions
+    that binding `name` to the value completes (0 for one that holds now).
+
+    The ranking of achievers sorts by the same estimate, so the bindings the cap cuts
+    are those ranking would have put last. Counting the preconditions that hold now
+    cannot tell the block under a covered one (one holds, one is a step away) from
+    every clear block elsewhere (one holds, one is out of reach for now).
+    """
+    relevant = []
+    for literal in hopes:
+        if name not in literal.args:
+            continue
+        if any(a != name and a in types and a not in binding for a in literal.args):
+            continue
+        relevant.append(literal)
+    if not relevant:
+        return values
+
+    def cost(value: str) -> float:
+        total = 0.0
+        for literal in relevant:
+            args = tuple([value if a == name else binding.get(a, a) for a in literal.args])
+            total += costs.get(Atom(literal.predicate, args), math.inf)
+        return total
+
+    return sorted(values, key=cost)
 
 
 def _holds(literal: Literal, binding: Mapping[str, str], facts: Container[Atom]) -> bool:

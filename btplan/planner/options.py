@@ -32,7 +32,9 @@ class PlannerOptions:
     achiever choice the failure is blamed on (btplan/planner/backjump.py).
     `search_stuck`, the last resort, plans a stuck condition by a complete search
     (btplan/planner/search.py) and inserts the plan as a subtree. `goal_agenda` orders
-    the goals by reasonable orders before the tree is built (btplan/planner/agenda.py).
+    the goals by reasonable orders before the tree is built (btplan/planner/agenda.py);
+    `state_agenda` adds the orders the initial state imposes (`agenda.state_orders`;
+    plan() turns it on in a fallback strategy).
     `expansions_per_tick` lets the acting loop tick the tree again, within the same tick
     (the world has not moved), after an expansion, up to that many expansions: Algorithm 1
     as published spends a tick of the world per expansion, which a sequential planner,
@@ -55,6 +57,7 @@ class PlannerOptions:
     retries: int = 6
     search_stuck: bool = True
     goal_agenda: bool = True
+    state_agenda: bool = False
     stall_limit: int = 3
     expansions_per_tick: int = 1
 

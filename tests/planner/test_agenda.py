@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from btplan.acting.offline import load, plan
@@ -48,3 +50,29 @@ def test_ordered_goals_need_fewer_moves(name: str) -> None:
         assert replay(task, result) == result.executed
     assert ordered.stats.moves < listed.stats.moves
 
+
+
+def test_the_initial_state_orders_a_goal_built_on_a_block_that_must_move(tmp_path: Path) -> None:
+    # b sits on a, e on b; the goals put c on b, then a on d. Once c is on b, b cannot
+    # be moved, so a cannot be cleared: on(a, d) must come first. The actions alone do
+    # not say so.
+    from btplan.lang.generators import generate
+    from btplan.planner.agenda import state_orders
+
+    domain, _ = generate("blocksworld", "pddl", seed=0, blocks=4)
+    (tmp_path / "domain.pddl").write_text(domain)
+    (tmp_path / "problem.pddl").write_text(
+        "(define (problem under) (:domain blocksworld)\n"
+        " (:objects a b c d e - block)\n"
+        " (:init (on_table a) (on b a) (on e b) (clear e) (on_table c) (clear c)\n"
+        "        (on_table d) (clear d) (hand_empty))\n"
+        " (:goal (and (on c b) (on a d))))\n")
+    task = load(str(tmp_path / "domain.pddl"), str(tmp_path / "problem.pddl"))
+    index = AchieverIndex(task)
+    producers, mutexes = index.relaxed.producers, index.mutexes
+    goals = [on("c", "b"), on("a", "d")]
+    assert goal_agenda(goals, producers, mutexes) == goals
+    extra = state_orders(goals, mutexes, index.relaxed, task.initial_state)
+    assert extra[on("c", "b")] == {on("a", "d")}
+    assert not extra.get(on("a", "d"))
+    assert goal_agenda(goals, producers, mutexes, extra) == [on("a", "d"), on("c", "b")]

@@ -121,3 +121,19 @@ def test_an_achiever_needing_what_it_is_for_is_recognised_two_steps_deep(
     assert kept == [pick_up]
     assert not_through_pursued([unstack, pick_up], set(), index.relaxed, state,
                                task.object_types) == [unstack, pick_up]
+
+
+def test_the_binding_nearest_to_running_survives_the_cap(tmp_path: Path) -> None:
+    # To clear a block under a covered one: unstack(above, below) is a step away (clear
+    # `above` first), every clear block elsewhere holds one precondition now too, and
+    # only one binding is enumerated. Counting what holds now cannot tell them apart.
+    task = task_of(tmp_path, "blocksworld", 2, blocks=12)
+    index = AchieverIndex(task, replace(PlannerOptions(), max_bindings=1))
+    state = task.initial_state
+    covered = {a.args[1] for a in state if a.predicate == "on"}
+    buried = [a for a in state if a.predicate == "on" and a.args[0] in covered]
+    assert buried
+    for top in buried:
+        above, below = top.args
+        found = index.achievers(GroundLiteral(Atom("clear", (below,)), True), state, None, 50)
+        assert f"unstack({above}, {below})" in [str(a) for a in found]
