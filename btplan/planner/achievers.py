@@ -126,8 +126,7 @@ class AchieverIndex:
             for atom in instances(condition, state):
                 for action in self.achievers(GroundLiteral(atom, False), state, refine, ALL):
                     undoing.setdefault(action.key, action)
-            scored = sorted((self._rank(a, state), a) for a in undoing.values())
-            return [a for score, a in scored if score[0] < math.inf][: limit or self.options.max_alternatives]
+            return self._best(list(undoing.values()), state, limit, False)
         reachable = self.relaxed.costs(state) if self.options.prune_bindings else None
         found: dict[int, GroundAction] = {}  # by identity: `ground` makes one per key
         relaxed = self._shared.relaxed  # its groundings, when something built it already
@@ -142,12 +141,7 @@ class AchieverIndex:
                 picked = self._enumerate(way, condition, state, refine, reachable)
             for action in picked:
                 found.setdefault(id(action), action)
-        candidates = list(found.values())
-        if self.options.mutexes:
-            candidates = [a for a in candidates if not self._impossible(a)]
-        scored = sorted((self._rank(a, state), a) for a in candidates)
-        ranked = [a for score, a in scored if score[0] < math.inf]
-        return ranked[: limit or self.options.max_alternatives]
+        return self._best(list(found.values()), state, limit, self.options.mutexes)
 
     def _enumerate(
         self, way: Way, condition: GroundLiteral, state: frozenset[Atom], refine: Refiner | None,
@@ -177,22 +171,40 @@ class AchieverIndex:
                 mutexes.exclusive(a, b) for i, a in enumerate(pre) for b in pre[i + 1:])
         return profile.impossible
 
-    def _rank(self, action: GroundAction, state: frozenset[Atom]) -> tuple[float, int, str]:
-        """Cost plus the h_add estimate of the preconditions false now, then how many
-        preconditions fail now, then the name. Values a backend refined (poses,
-        trajectories) are unknown to the relaxed model: preconditions on them are
-        counted instead of called unreachable."""
-        profile = self._profile(action)
-        missing = [a for a in profile.positive if a not in state]
-        failing = len(missing) + sum(1 for p in profile.negative if not p.holds(state))
-        estimate = 0.0
-        if self.options.heuristic and missing:
-            if profile.unknown and any(a in profile.unknown for a in missing):
-                estimate = float(len(missing))
-            else:
-                cost = self.relaxed.costs(state)
-                estimate = sum(cost.get(a, math.inf) for a in missing)
-        return (profile.cost + estimate, failing, profile.label)
+    def _best(self, candidates: list[GroundAction], state: frozenset[Atom], limit: int | None,
+              drop_impossible: bool) -> list[GroundAction]:
+        """The candidates best first, those that cannot run or reach left out, bounded.
+
+        The rank: cost plus the h_add estimate of the preconditions false now, then how
+        many preconditions fail now, then the name (no two actions share it, so the order
+        is total). Values a backend refined (poses, trajectories) are unknown to the
+        relaxed model: preconditions on them are counted instead of called unreachable.
+        """
+        heuristic = self.options.heuristic
+        cost: dict[Atom, float] | None = None
+        inf = math.inf
+        scored: list[tuple[tuple[float, int, str], GroundAction]] = []
+        for action in candidates:
+            profile = self._profile(action)
+            if drop_impossible and self._impossible(action):
+                continue
+            missing = [a for a in profile.positive if a not in state]
+            failing = len(missing)
+            if profile.negative:
+                failing += sum(1 for p in profile.negative if not p.holds(state))
+            estimate = 0.0
+            if heuristic and missing:
+                if profile.unknown and any(a in profile.unknown for a in missing):
+                    estimate = float(len(missing))
+                else:
+                    if cost is None:
+                        cost = self.relaxed.costs(state)
+                    estimate = sum(cost.get(a, inf) for a in missing)
+            total = profile.cost + estimate
+            if total < inf:
+                scored.append(((total, failing, profile.label), action))
+        scored.sort(key=_score)
+        return [a for _, a in scored][: limit or self.options.max_alternatives]
 
     def _profile(self, action: GroundAction) -> _Profile:
         """Kept by identity: `ground` makes one action per key, and the profile keeps
@@ -221,6 +233,10 @@ class _Profile:
         self.negative = tuple(p for p in action.preconditions if not p.positive)
         self.unknown = frozenset(atom for atom in self.positive
                                  if any(a not in known for a in atom.args))
+
+
+def _score(scored: tuple[tuple[float, int, str], GroundAction]) -> tuple[float, int, str]:
+    return scored[0]
 
 
 def instances(condition: GroundLiteral, state: frozenset[Atom]) -> list[Atom]:

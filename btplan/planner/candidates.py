@@ -96,6 +96,7 @@ class StaticBindings:
         self._changing = task.domain.changed_predicates
         self._static = self._static_part(task.initial_state)
         self._tables: dict[str, _Table | None] = {}
+        self._by_name: dict[str, list[GroundAction]] | None = None
         self._ways: dict[GroundLiteral, list[Way]] = {}
         self._state: frozenset[Atom] | None = None
         self._state_ok = False
@@ -174,19 +175,22 @@ class StaticBindings:
         changing = self._changing
         where = [c for c in template.constraints
                  if c.predicate != EQUALITY and c.predicate in changing]
+        if self._by_name is None:
+            self._by_name = {}
+            for action in grounded:
+                self._by_name.setdefault(action.name, []).append(action)
+        mine = self._by_name.get(template.name, [])
+        if len(mine) > TABLE_LIMIT:
+            return None
         names = [p.name for p in template.parameters]
         entries: list[_Entry] = []
-        for action in grounded:
-            if action.name != template.name:
-                continue
-            if len(entries) == TABLE_LIMIT:
-                return None
+        for action in mine:
             checks: tuple[tuple[Atom, bool], ...] = ()
             if where:
                 binding = dict(zip(names, action.args))
                 checks = tuple((Atom(c.predicate, tuple([binding.get(a, a) for a in c.args])),
                                 c.positive) for c in where)
-            hopes = tuple(p.atom for p in action.preconditions
-                          if p.positive and p.atom.predicate in changing)
+            hopes = tuple([p.atom for p in action.preconditions
+                           if p.positive and p.atom.predicate in changing])
             entries.append(_Entry(action, checks, hopes))
         return _Table(template, entries)

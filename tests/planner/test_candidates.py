@@ -33,6 +33,7 @@ TASKS = {
 GUARDED = """
 domain guarded {
     types { room  item }
+    constants { lamp : item }
     predicates {
         door(a: room, b: room)
         open(a: room, b: room)
@@ -48,6 +49,10 @@ domain guarded {
     action take(i: item, r: room) {
         pre: at(r), lies(i, r)
         post: has(i), not lies(i, r)
+    }
+    action restore(i: item, r: room) {
+        pre: at(r), has(i), has(lamp)
+        post: lies(i, r), not has(i)
     }
     action unlock(a: room, b: room) {
         where: door(a, b), not open(a, b)
@@ -193,3 +198,26 @@ def test_one_table_serves_every_index_of_the_task() -> None:
     first = AchieverIndex(task)
     second = AchieverIndex(task, PlannerOptions(max_alternatives=2), like=first)
     assert isinstance(first.static, StaticBindings) and second.static is first.static
+
+
+def test_one_step_back_agrees_with_the_relaxed_search(tmp_path: Path) -> None:
+    """keep_reachable's shortcut says yes only where the relaxed search says yes too (and
+    no where taking an item leaves nothing to put it back)."""
+    from btplan.planner.lookahead import _back_in_one_step
+
+    (tmp_path / "guarded.bt").write_text(GUARDED)
+    tasks = [load(*(str(ROOT / f) for f in TASKS[n])) for n in ("towers", "packages", "obstacle")]
+    said_yes = said_no = 0
+    for task in [*tasks, load(str(tmp_path / "guarded.bt"))]:
+        index = AchieverIndex(task)
+        relaxed = index.relaxed
+        for state in _states(task, index, 8, seed=7):
+            for action in relaxed.actions:
+                after = action.apply(state)
+                lost = state - after
+                if _back_in_one_step(lost, after, relaxed):
+                    said_yes += 1
+                    assert relaxed.reachable(after, lost), (action, sorted(state))
+                else:
+                    said_no += 1
+    assert said_yes > 0 and said_no > 0
