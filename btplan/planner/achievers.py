@@ -3,12 +3,16 @@
 The domain is indexed by the predicate and sign of each effect, so the achievers of
 a condition are found without scanning every action (Algorithm 2, line 2). Each
 matching effect is unified with the condition, the remaining parameters are bound
-(`grounding.bindings`), and the groundings are ranked best first.
+(`grounding.bindings`, or read from the relaxed model's groundings, candidates.py), and
+the groundings are ranked best first. Each expansion looks achievers up again, in a new
+state, so what does not depend on the state (the unification, the static checks, what
+ranking reads from an action, mutex verdicts) is worked out once per task.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
 from btplan.model import (
@@ -22,7 +26,8 @@ from btplan.model import (
     instantiate,
     matches,
 )
-from btplan.planner.grounding import Objects, bindings, unify
+from btplan.planner.candidates import StaticBindings, Way
+from btplan.planner.grounding import Objects, bindings
 from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
 from btplan.planner.options import PlannerOptions
@@ -44,6 +49,8 @@ class _Shared:
         self.relaxed: RelaxedModel | None = None
         self.mutexes: Mutexes | None = None
         self.search: SubgoalSearch | None = None
+        self.static: StaticBindings | None = None
+        self.profiles: dict[int, _Profile] = {}
 
 
 class AchieverIndex:
@@ -57,13 +64,15 @@ class AchieverIndex:
         self.task = task
         self.options = options or PlannerOptions()
         self._shared: _Shared = like._shared if like is not None else _Shared()
-        self._by_effect: dict[tuple[str, bool], list[tuple[ActionTemplate, Literal]]] = {}
+        self._by_effect: dict[tuple[str, bool], list[tuple[ActionTemplate, int, Literal]]] = {}
         for template in task.domain.actions:
-            for effect in template.effects:
+            for number, effect in enumerate(template.effects):
                 key = (effect.predicate, effect.positive)
-                self._by_effect.setdefault(key, []).append((template, effect))
+                self._by_effect.setdefault(key, []).append((template, number, effect))
         self.objects = self._shared.objects or Objects(task)
         self._shared.objects = self.objects
+        self.static = self._shared.static or StaticBindings(task, self.objects)
+        self._shared.static = self.static
 
     @property
     def relaxed(self) -> RelaxedModel:
@@ -116,61 +125,123 @@ class AchieverIndex:
         cost plus, with the heuristic on, the h_add estimate of the preconditions;
         then the number of preconditions that fail now; then the name, for ties.
         """
-        found: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
         if not condition.positive and WILDCARD in condition.atom.args:
             # `not blocks(_, t)`: undo each instance that holds now; guards() says which.
+            undoing: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
             for atom in instances(condition, state):
                 for action in self.achievers(GroundLiteral(atom, False), state, refine, ALL):
-                    found.setdefault(action.key, action)
-            scored = sorted((self._rank(a, state), a) for a in found.values())
-            return [a for score, a in scored if score[0] < math.inf][: limit or self.options.max_alternatives]
+                    undoing.setdefault(action.key, action)
+            return self._best(list(undoing.values()), state, limit, False)
         reachable = self.relaxed.costs(state) if self.options.prune_bindings else None
-        for template, effect in self._by_effect.get((condition.atom.predicate, condition.positive), []):
-            partial = unify(self.task, template, effect, condition.atom, self.objects)
-            if partial is None:
-                continue
-            for binding in bindings(
-                self.task, template, partial, state, refine, self.options.max_bindings,
-                self.objects, reachable=reachable,
-            ):
-                args = tuple(binding[p.name] for p in template.parameters)
-                action = self.ground(template, args)
-                if _makes_true(action, condition) and action.key not in found:
-                    found[action.key] = action
-        candidates = list(found.values())
-        if self.options.mutexes:
-            candidates = [a for a in candidates if not self._impossible(a)]
-        scored = sorted((self._rank(a, state), a) for a in candidates)
-        ranked = [a for score, a in scored if score[0] < math.inf]
-        return ranked[: limit or self.options.max_alternatives]
+        found: dict[int, GroundAction] = {}  # by identity: `ground` makes one per key
+        relaxed = self._shared.relaxed  # its groundings, when something built it already
+        limit_bindings = self.options.max_bindings
+        effects = self._by_effect.get((condition.atom.predicate, condition.positive), [])
+        for way in self.static.ways(condition, effects):
+            picked = None
+            if relaxed is not None:
+                picked = self.static.pick(way, state, reachable, limit_bindings, relaxed.actions,
+                                          lambda action: _makes_true(action, condition))
+            if picked is None:
+                picked = self._enumerate(way, condition, state, refine, reachable)
+            for action in picked:
+                found.setdefault(id(action), action)
+        return self._best(list(found.values()), state, limit, self.options.mutexes)
+
+    def _enumerate(
+        self, way: Way, condition: GroundLiteral, state: frozenset[Atom], refine: Refiner | None,
+        reachable: dict[Atom, float] | None,
+    ) -> list[GroundAction]:
+        """The groundings of `way` that make `condition`, bound one parameter at a time
+        (grounding.bindings), for when the static bindings cannot tell (candidates.py)."""
+        template = way.template
+        made = [self.ground(template, tuple(binding[p.name] for p in template.parameters))
+                for binding in bindings(self.task, template, way.partial, state, refine,
+                                        self.options.max_bindings, self.objects,
+                                        reachable=reachable)]
+        return [a for a in made if _makes_true(a, condition)]
 
     def _impossible(self, action: GroundAction) -> bool:
         """Whether two preconditions of `action` exclude each other (h^2): it never runs.
 
         Barman's fill-shot(shot1, i, left, left, d) needs holding(left, shot1) and
-        handempty(left); h_add ranks it like any other grounding.
+        handempty(left); h_add ranks it like any other grounding. Remembered per action:
+        the mutexes hold for the whole task.
         """
-        mutexes = self.mutexes
-        pre = [p for p in action.preconditions if p.positive and mutexes.knows(p.atom)]
-        return any(mutexes.exclusive(a, b) for i, a in enumerate(pre) for b in pre[i + 1:])
+        profile = self._profile(action)
+        if profile.impossible is None:
+            mutexes = self.mutexes
+            pre = [p for p in action.preconditions if p.positive and mutexes.knows(p.atom)]
+            profile.impossible = any(
+                mutexes.exclusive(a, b) for i, a in enumerate(pre) for b in pre[i + 1:])
+        return profile.impossible
 
-    def _rank(self, action: GroundAction, state: frozenset[Atom]) -> tuple[float, int, str]:
-        failing = sum(1 for p in action.preconditions if not p.holds(state))
-        estimate = 0.0
-        if self.options.heuristic:
-            estimate = self._estimate(action, state)
-        return (action.cost + estimate, failing, str(action))
+    def _best(self, candidates: list[GroundAction], state: frozenset[Atom], limit: int | None,
+              drop_impossible: bool) -> list[GroundAction]:
+        """The candidates best first, those that cannot run or reach left out, bounded.
 
-    def _estimate(self, action: GroundAction, state: frozenset[Atom]) -> float:
-        atoms = [p.atom for p in action.preconditions if p.positive and p.atom not in state]
-        if not atoms:
-            return 0.0
-        known = self.task.object_types
-        if all(a in known for atom in atoms for a in atom.args):
-            return self.relaxed.estimate(state, atoms)
-        # Values a backend refined (poses, trajectories) are unknown to the relaxed
-        # model; count such preconditions instead of calling them unreachable.
-        return float(len(atoms))
+        The rank: cost plus the h_add estimate of the preconditions false now, then how
+        many preconditions fail now, then the name (no two actions share it, so the order
+        is total). Values a backend refined (poses, trajectories) are unknown to the
+        relaxed model: preconditions on them are counted instead of called unreachable.
+        """
+        heuristic = self.options.heuristic
+        cost: dict[Atom, float] | None = None
+        inf = math.inf
+        scored: list[tuple[tuple[float, int, str], GroundAction]] = []
+        for action in candidates:
+            profile = self._profile(action)
+            if drop_impossible and self._impossible(action):
+                continue
+            missing = [a for a in profile.positive if a not in state]
+            failing = len(missing)
+            if profile.negative:
+                failing += sum(1 for p in profile.negative if not p.holds(state))
+            estimate = 0.0
+            if heuristic and missing:
+                if profile.unknown and any(a in profile.unknown for a in missing):
+                    estimate = float(len(missing))
+                else:
+                    if cost is None:
+                        cost = self.relaxed.costs(state)
+                    estimate = sum(cost.get(a, inf) for a in missing)
+            total = profile.cost + estimate
+            if total < inf:
+                scored.append(((total, failing, profile.label), action))
+        scored.sort(key=_score)
+        return [a for _, a in scored][: limit or self.options.max_alternatives]
+
+    def _profile(self, action: GroundAction) -> _Profile:
+        """Kept by identity: `ground` makes one action per key, and the profile keeps
+        its action alive, so that the identity is not reused."""
+        profiles = self._shared.profiles
+        profile = profiles.get(id(action))
+        if profile is None or profile.action is not action:
+            profile = profiles[id(action)] = _Profile(action, self.task.object_types)
+        return profile
+
+
+class _Profile:
+    """What ranking reads from an achiever, taken apart once: the same achievers are
+    ranked again on every look-up, in every state."""
+
+    __slots__ = ("action", "cost", "impossible", "label", "negative", "positive", "unknown")
+
+    def __init__(self, action: GroundAction, known: Mapping[str, str]) -> None:
+        self.action = action
+        self.impossible: bool | None = None
+        """Whether two preconditions exclude each other (`_impossible`), once asked."""
+        self.cost = action.cost
+        self.label = str(action)
+        self.positive = tuple(p.atom for p in action.preconditions if p.positive)
+        """In order, a precondition written twice counted twice (as the sum always did)."""
+        self.negative = tuple(p for p in action.preconditions if not p.positive)
+        self.unknown = frozenset(atom for atom in self.positive
+                                 if any(a not in known for a in atom.args))
+
+
+def _score(scored: tuple[tuple[float, int, str], GroundAction]) -> tuple[float, int, str]:
+    return scored[0]
 
 
 def instances(condition: GroundLiteral, state: frozenset[Atom]) -> list[Atom]:

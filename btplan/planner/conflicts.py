@@ -78,10 +78,15 @@ class Judge:
         return found
 
     def blocks(
-        self, held: list[GroundLiteral], node: Node, doers: list[Action], rule: str
+        self, held: list[GroundLiteral], node: Node, doers: list[Action], rule: str,
+        ways: list[list[GroundLiteral]] | None = None,
     ) -> list[Conflict]:
-        """Conflicts when every way `node` can succeed needs something `held` excludes."""
-        ways = needs_by_alternative(node, self.guards)
+        """Conflicts when every way `node` can succeed needs something `held` excludes.
+
+        `ways`: `needs_by_alternative(node, self.guards)`, when the caller has it already.
+        """
+        if ways is None:
+            ways = needs_by_alternative(node, self.guards)
         found: list[Conflict] = []
         for needs in ways:
             conflicts = self.excludes(held, needs, doers, rule)
@@ -104,6 +109,29 @@ class Judge:
                 if self.mutexes.exclusive(hold, need):
                     found.append(Conflict(str(hold), f"excludes {need}", rule))
         return found + (self.threatens(doers, proxy, rule) if proxy else [])
+
+    def clash(self, held: list[GroundLiteral], needed: list[GroundLiteral],
+              doers: list[Action], own: list[Action]) -> bool:
+        """Whether `excludes(held, needed, doers)` or `threatens(own, held)` would find a
+        conflict, without spelling any out (alternative_conflicts asks only whether)."""
+        mutexes = self.mutexes
+        proxy: list[GroundLiteral] = []
+        for need in needed:
+            if mutexes is None or not mutexes.knows(need.atom):
+                proxy.append(need)
+            elif any(mutexes.exclusive(hold, need) for hold in held):
+                return True
+        return self._falsified(doers, proxy) or self._falsified(own, held)
+
+    def _falsified(self, doers: list[Action], conditions: list[GroundLiteral]) -> bool:
+        """Whether `threatens(doers, conditions)` would find a conflict."""
+        if not conditions:
+            return False
+        for leaf in doers:
+            action = self.grounding.get(leaf.key)
+            if action is not None and any(falsifies(action, c) for c in conditions):
+                return True
+        return False
 
 
 # --- what a subtree guarantees, needs and does ---------------------------------------------
@@ -198,13 +226,17 @@ def held_before(node: Node) -> list[GroundLiteral]:
 def find_conflicts(subtree: Node, judge: Judge) -> list[Conflict]:
     """Rules (a) and (b) for `subtree` where it stands now."""
     own = achiever_leaves(subtree)
+    ways: list[list[GroundLiteral]] | None = None  # the same for every earlier sibling
     found: list[Conflict] = []
     for sequence, index in sequence_slots(subtree):
         for earlier in sequence.children[:index]:
             if earlier in judge.guards:
                 continue
             held = guarantees(earlier)
-            found += judge.blocks(held, subtree, achiever_leaves(earlier), "needed after it holds")
+            if ways is None:
+                ways = needs_by_alternative(subtree, judge.guards)
+            found += judge.blocks(held, subtree, achiever_leaves(earlier), "needed after it holds",
+                                  ways)
             found += judge.threatens(own, held, "undoes earlier work")
     return found
 
@@ -256,20 +288,37 @@ def _blocks_unexpanded(kept: list[GroundLiteral], sibling: Node, judge: Judge) -
     return found[:1]
 
 
+Earlier = list[list[tuple[list[GroundLiteral], list[Action]]]]
+"""Per Sequence ancestor of a subtree, innermost first: what each earlier sibling (not a
+guard) holds and the actions that achieve it (`earlier_work`)."""
+
+
+def earlier_work(subtree: Node, judge: Judge) -> Earlier:
+    """What the earlier siblings along `subtree`'s Sequence ancestors hold and do, read
+    once for all the alternatives of an atomic BT (they share the place)."""
+    return [[(guarantees(e), achiever_leaves(e)) for e in sequence.children[:index]
+             if e not in judge.guards]
+            for sequence, index in sequence_slots(subtree)]
+
+
 def alternative_conflicts(
-    subtree: Fallback, alternative: Node, judge: Judge, depth: int | None = None
+    subtree: Fallback, alternative: Node, judge: Judge, depth: int | None = None,
+    earlier: Earlier | None = None,
 ) -> bool:
-    """Whether one alternative of an atomic BT conflicts, looking `depth` Sequences up."""
+    """Whether one alternative of an atomic BT conflicts, looking `depth` Sequences up.
+
+    `earlier`: `earlier_work(subtree, judge)`, when the caller has it already.
+    """
     needs = [g for c in alternative.children[:-1] for g in guarantees(c)]
     own = [c for c in alternative.children[-1:] if isinstance(c, Action)]
+    if earlier is not None:
+        return any(judge.clash(held, needs, doers, own)
+                   for slot in earlier[:depth] for held, doers in slot)
     for sequence, index in sequence_slots(subtree)[:depth]:
-        for earlier in sequence.children[:index]:
-            if earlier in judge.guards:
+        for sibling in sequence.children[:index]:
+            if sibling in judge.guards:
                 continue
-            held = guarantees(earlier)
-            if judge.excludes(held, needs, achiever_leaves(earlier), ""):
-                return True
-            if judge.threatens(own, held, ""):
+            if judge.clash(guarantees(sibling), needs, achiever_leaves(sibling), own):
                 return True
     return False
 

@@ -7,7 +7,6 @@ is an Inverter over the Condition leaf, and that Inverter is what gets expanded.
 
 from __future__ import annotations
 
-from collections import deque
 from collections.abc import Collection, Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING
 
@@ -39,12 +38,20 @@ def action_node(action: GroundAction) -> Action:
 def literal_of(node: Node) -> GroundLiteral | None:
     """The literal a condition node checks, or None for any other node."""
     if type(node) is Condition:
-        return GroundLiteral(Atom(node.ident, node.args), True)
-    if type(node) is Inverter and node.children and type(node.children[0]) is Condition:
-        child = node.children[0]
-        assert isinstance(child, Condition)
-        return GroundLiteral(Atom(child.ident, child.args), False)
+        return _literal(node.ident, node.args, True)
+    if type(node) is Inverter:
+        children = node.children
+        if children:
+            child = children[0]
+            if type(child) is Condition:
+                return _literal(child.ident, child.args, False)
     return None
+
+
+def _literal(predicate: str, args: tuple[str, ...], positive: bool) -> GroundLiteral:
+    """GroundLiteral(Atom(predicate, args), positive), without the named tuples' Python-level
+    constructors: planning reads conditions back as literals thousands of times a run."""
+    return tuple.__new__(GroundLiteral, (tuple.__new__(Atom, (predicate, args)), positive))
 
 
 def condition_copy(node: Node) -> Node | None:
@@ -211,18 +218,36 @@ def is_condition(node: Node) -> bool:
 
 def conditions_bfs(root: Node) -> Iterable[Node]:
     """Condition nodes in breadth-first order, left to right (GetConditionsBFS)."""
-    queue: deque[Node] = deque([root])
-    while queue:
-        node = queue.popleft()
-        if is_condition(node):
-            yield node
-            continue
-        queue.extend(node.children)
+    level = [root]
+    while level:
+        below: list[Node] = []
+        for node in level:
+            if is_condition(node):
+                yield node
+            else:
+                below += node.children
+        level = below
 
 
 def failed_conditions(tree: BehaviorTree, expanded: set[Node]) -> list[Node]:
-    """Conditions that failed on the last tick and were not expanded yet, BFS order."""
-    return [n for n in conditions_bfs(tree.root) if n.status is FAILURE and n not in expanded]
+    """Conditions that failed on the last tick and were not expanded yet, BFS order.
+
+    `conditions_bfs` written out: it runs before every expansion, over the whole tree.
+    """
+    found: list[Node] = []
+    level = [tree.root]
+    while level:
+        below: list[Node] = []
+        for node in level:
+            kind = type(node)
+            if kind is Condition or (kind is Inverter and node.children
+                                     and type(node.children[0]) is Condition):
+                if node.status is FAILURE and node not in expanded:
+                    found.append(node)
+            else:
+                below += node.children
+        level = below
+    return found
 
 
 def get_condition_to_expand(tree: BehaviorTree, expanded: set[Node]) -> Node | None:

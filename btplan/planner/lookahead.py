@@ -105,7 +105,9 @@ def keep_reachable(
         after = action.apply(state)
         # What is reachable from `after` includes all that was, once what the action
         # deleted is reachable again: then the targets need no look (a cheap, early exit).
-        if relaxed.reachable(after, state - after) or relaxed.reachable(after, targets):
+        lost = state - after
+        if (_back_in_one_step(lost, after, relaxed) or relaxed.reachable(after, lost)
+                or relaxed.reachable(after, targets)):
             safe.append(action)
             if len(safe) == width:
                 break
@@ -114,3 +116,18 @@ def keep_reachable(
     if not any(a.applicable(state) for a in safe):
         return list(achievers[:width])
     return safe
+
+
+def _back_in_one_step(lost: frozenset[Atom], after: frozenset[Atom], relaxed: RelaxedModel
+                      ) -> bool:
+    """Whether, for each atom in `lost`, some grounding whose positive preconditions all
+    hold in `after` adds it back: then `relaxed.reachable(after, lost)` holds, known
+    without a search (an achiever is usually undone by its inverse: unstack what was
+    stacked). keep_reachable asks this for every achiever it checks."""
+    for atom in lost:
+        for producer in relaxed.producers(atom):
+            if all(p.atom in after for p in producer.preconditions if p.positive):
+                break
+        else:
+            return False
+    return True

@@ -31,6 +31,7 @@ from btplan.planner.conflicts import (
     Judge,
     alternative_conflicts,
     circular_place,
+    earlier_work,
     find_conflicts,
     placement_conflicts,
 )
@@ -167,9 +168,11 @@ def prune_conflicting_alternatives(subtree: Node, judge: Judge) -> bool:
     if not isinstance(subtree, Fallback) or len(subtree.children) < 3:
         return False
     pruned = False
+    earlier = earlier_work(subtree, judge)  # the alternatives share their place
     for depth in (1, None):
         alternatives = subtree.children[1:]
-        bad = [a for a in alternatives if alternative_conflicts(subtree, a, judge, depth)]
+        bad = [a for a in alternatives
+               if alternative_conflicts(subtree, a, judge, depth, earlier)]
         if bad and len(bad) < len(alternatives):
             for alternative in bad:
                 subtree.remove(alternative)
