@@ -119,10 +119,21 @@ class StaticBindings:
 
     def _usable(self, state: frozenset[Atom]) -> bool:
         """Whether `state` has the initial state's static facts (remembered for the
-        last state asked about)."""
-        if state is not self._state:
-            self._state = state
-            self._state_ok = self._static_part(state) == self._static
+        last state asked about).
+
+        The next state asked about differs from the last by a few atoms: when none of
+        them is static, its static part is the last one's, and so is the answer. The
+        difference is taken in C; only a static atom in it sends the check over the
+        whole state again."""
+        last = self._state
+        if state is last:
+            return self._state_ok
+        self._state = state
+        if last is not None:
+            changing = self._changing
+            if all(a.predicate in changing for a in state.symmetric_difference(last)):
+                return self._state_ok
+        self._state_ok = self._static_part(state) == self._static
         return self._state_ok
 
     def pick(

@@ -173,6 +173,30 @@ def test_a_changed_static_fact_sends_every_look_up_back_to_enumeration(tmp_path:
     assert _same_achievers(task, options, [walled, extra, task.initial_state]) > 0
 
 
+def test_the_static_verdict_follows_a_walk_of_states(tmp_path: Path) -> None:
+    """The verdict carried from one state to the next while only changing facts differ
+    must turn when a static fact goes, stay turned while it is gone, and turn back."""
+    (tmp_path / "guarded.bt").write_text(GUARDED)
+    task = load(str(tmp_path / "guarded.bt"))
+    index = AchieverIndex(task)
+    index.relaxed  # noqa: B018
+    door = Atom("door", ("r2", "r3"))
+    opened = Atom("open", ("r3", "r4"))
+    walk = [(task.initial_state, True), (task.initial_state | {opened}, True),
+            ((task.initial_state | {opened}) - {door}, False),
+            (task.initial_state - {door}, False), (task.initial_state - {door}, False),
+            (task.initial_state, True), (task.initial_state | {Atom("door", ("r4", "r1"))}, False),
+            (task.initial_state | {opened}, True)]
+    at_r3 = GroundLiteral(Atom("at", ("r3",)), True)
+    effects = [(t, i, e) for t in task.domain.actions for i, e in enumerate(t.effects)
+               if e.predicate == "at" and e.positive]
+    way = index.static.ways(at_r3, effects)[0]
+    for state, usable in walk:
+        picked = index.static.pick(way, frozenset(state), None, 64, index.relaxed.actions,
+                                   lambda action: True)
+        assert (picked is not None) is usable
+
+
 def test_where_constraints_on_changing_facts_are_checked_in_each_state(tmp_path: Path) -> None:
     """go needs the door open and unlock needs it shut, in the state of the look-up."""
     (tmp_path / "guarded.bt").write_text(GUARDED)
