@@ -57,6 +57,9 @@ class Mutexes:
 
     def _fixpoint(self, actions: Sequence[GroundAction], atoms: list[Atom]) -> None:
         index = self._index
+        by_predicate: dict[str, list[Atom]] = {}
+        for atom in atoms:
+            by_predicate.setdefault(atom.predicate, []).append(atom)
         compiled = []
         for action in actions:
             pre = [index[p.atom] for p in action.preconditions if p.positive]
@@ -65,13 +68,16 @@ class Mutexes:
             for atom in action.delete:
                 deleted |= 1 << index[atom]
             for pattern in action.delete_patterns:
-                for atom in atoms:
+                for atom in by_predicate.get(pattern.predicate, ()):
                     if matches(pattern, atom):
                         deleted |= 1 << index[atom]
             add_bits = 0
             for i in add:
                 add_bits |= 1 << i
-            compiled.append((pre, add, add_bits, deleted & ~add_bits))
+            pre_bits = 0
+            for i in pre:
+                pre_bits |= 1 << i
+            compiled.append((pre, pre_bits, add, add_bits, deleted & ~add_bits))
         rows = self._rows
         # Pairs are symmetric: when atom q gains partners, each partner gains q. Setting
         # those bits one by one in big ints copies a whole row per bit (quadratic in the
@@ -90,15 +96,17 @@ class Mutexes:
         changed = True
         while changed:
             changed = False
-            for pre, add, add_bits, deleted in compiled:
+            for pre, pre_bits, add, add_bits, deleted in compiled:
                 together = self._reached
+                if together & pre_bits != pre_bits:
+                    continue  # a precondition is not reachable yet
                 for i in pre:
-                    together &= row(i)
-                if any(not together >> i & 1 for i in pre):
-                    continue  # a precondition, or a pair of them, is not reachable yet
+                    together &= rows[i] if not dirty[i] else row(i)
+                if together & pre_bits != pre_bits:
+                    continue  # a pair of preconditions is not reachable yet
                 keep = together & ~deleted & ~add_bits
                 for q in add:
-                    new = (keep | add_bits) & ~row(q)
+                    new = (keep | add_bits) & ~(rows[q] if not dirty[q] else row(q))
                     if not new:
                         continue
                     changed = True
