@@ -144,12 +144,10 @@ class StaticBindings:
         condition true, in no particular order; None when only `bindings` can tell (see
         the module docstring). `grounded` is the relaxed model's list of groundings, read
         when a template is first tabled; `makes_true` is asked once per grounding."""
-        if not self._usable(state):
-            return None
         if way.tabled is None:
             self._prepare(way, grounded, makes_true)
-        if not way.tabled:
-            return None
+        if not way.tabled or not self._usable(state):
+            return None  # whether it is tabled does not depend on the state: asked first
         found: list[GroundAction] = []
         count = 0
         for entry, makes in zip(way.entries, way.makes):
