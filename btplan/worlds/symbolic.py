@@ -56,6 +56,8 @@ class SymbolicWorld:
         # Worlds of one task may share their groundings (offline planning starts many).
         self._grounded: dict[LeafKey, GroundAction] = groundings if groundings is not None else {}
         self._remaining: dict[LeafKey, int] = {}
+        self._objects: dict[str, tuple[str, ...]] = {}
+        self._goal_names: frozenset[str] | None = None
         self._fail_next: list[tuple[str, tuple[str, ...] | None]] = []
         self.executed: list[GroundAction] = []
         self.started: list[GroundAction] = []
@@ -178,14 +180,28 @@ class SymbolicWorld:
         else fits, so an obstacle is put aside, not on the goal. Sorted by name, so the
         answer is the same on every run.
         """
+        # Which constraints are decided depends on the names bound, not on the values:
+        # the same for every candidate. The objects of a type and the goal's names depend
+        # on the task only; only the constraints are read from the state, on every call.
+        checks = _decided(template, {**binding, parameter.name: ""})
         out: list[str] = []
-        for candidate in self.task.objects_of(parameter.type):
+        for candidate in self._objects_of(parameter.type):
             trial = dict(binding)
             trial[parameter.name] = candidate
-            if all(self._holds(c, trial) for c in _decided(template, trial)):
+            if all(self._holds(c, trial) for c in checks):
                 out.append(candidate)
-        named = {a for g in self.task.goal_literals for a in g.atom.args}
+        named = self._goal_names
+        if named is None:
+            named = self._goal_names = frozenset(
+                a for g in self.task.goal_literals for a in g.atom.args)
         return [c for c in out if c not in named] or out
+
+    def _objects_of(self, type_name: str) -> tuple[str, ...]:
+        """`Task.objects_of`, remembered per type: the task's objects do not change."""
+        found = self._objects.get(type_name)
+        if found is None:
+            found = self._objects[type_name] = self.task.objects_of(type_name)
+        return found
 
     def _stale(self, action: GroundAction) -> bool:
         """A refined value whose `where` constraints no longer hold: a route that is gone.

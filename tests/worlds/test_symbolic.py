@@ -73,6 +73,14 @@ def test_refine_answers_objects_satisfying_where_in_the_current_state() -> None:
     assert w.refine(move, {"l": "goal"}, trajectory) == ["tau_goal"]
     w.set_fact(Atom("route", ("goal", "tau_cube")))
     assert w.refine(move, {"l": "goal"}, trajectory) == ["tau_cube", "tau_goal"]
+    w.clear_fact(Atom("route", ("goal", "tau_cube")))  # what is remembered is not the state
+    assert w.refine(move, {"l": "goal"}, trajectory) == ["tau_goal"]
+    # a second type in the same world gets its own objects (the goal names both
+    # locations, so neither is held back)
+    place = w.task.domain.action_map["Place"]
+    location = place.parameters[1]
+    assert w.refine(place, {"o": "cube"}, location) == ["cube", "goal"]
+    assert w.refine(move, {"l": "goal"}, trajectory) == ["tau_goal"]
 
 
 def test_equality_conditions_are_checked_by_value() -> None:
