@@ -22,6 +22,7 @@ from btplan.model import (
     matches,
 )
 from btplan.planner.grounding import Objects, bindings, unify
+from btplan.planner.reach import building
 from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
 from btplan.planner.options import PlannerOptions
@@ -86,8 +87,10 @@ class AchieverIndex:
         """h^2 mutexes from the initial state, built on first use."""
         shared = self._shared
         if shared.mutexes is None:
-            shared.mutexes = Mutexes(self.relaxed.actions, self.task.initial_state,
-                                     self.task.domain)
+            relaxed = self.relaxed
+            with building():
+                shared.mutexes = Mutexes(relaxed.actions, self.task.initial_state,
+                                         self.task.domain)
         return shared.mutexes
 
     @property
@@ -95,7 +98,9 @@ class AchieverIndex:
         """The last-resort search over the relaxed model's groundings, built on first use."""
         shared = self._shared
         if shared.search is None:
-            shared.search = SubgoalSearch(self.relaxed.actions)
+            relaxed = self.relaxed
+            with building():
+                shared.search = SubgoalSearch(relaxed.actions)
         return shared.search
 
     def achievers(
