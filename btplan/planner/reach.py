@@ -26,13 +26,13 @@ Binding = dict[str, str]
 
 @contextmanager
 def building() -> Iterator[None]:
-    """Pause the cyclic garbage collector while a model of many small objects is built,
-    then move what survives out of its reach (`gc.freeze`).
+    """Pause the cyclic garbage collector while a model of many small objects is built.
 
     Ground actions, atoms and index lists hold no reference cycles, so the collector
     frees nothing among them, yet it scanned them each time allocations outnumbered
-    frees: 2 of 4.6 s of the relaxed model of parking p02, and again in every full
-    collection during the search that follows."""
+    frees: 2 of 4.6 s of the relaxed model of parking p02. (Freezing them after, out
+    of the collector's reach for good, would also keep whatever cycles other objects
+    of the process form then, such as bindings of native libraries, until exit.)"""
     enabled = gc.isenabled()
     gc.disable()
     try:
@@ -40,7 +40,6 @@ def building() -> Iterator[None]:
     finally:
         if enabled:
             gc.enable()
-        gc.freeze()
 
 
 class _Facts:
