@@ -213,7 +213,7 @@ def report(cases: list[Case], planners: list[str], limit: float) -> list[str]:
         lines.append(f"{name:<12} " + " ".join(
             f"{sum(c.runs[p].solved for c in mine):>4}/{len(mine):<5}" for p in planners))
     for peer in planners:
-        if peer == "btplan":
+        if peer == "btplan" or "btplan" not in planners:  # ratios are btplan's to a peer
             continue
         both = [c for c in cases if c.runs["btplan"].solved and c.runs[peer].solved]
         time_ratio = _median([c.runs["btplan"].seconds / c.runs[peer].seconds for c in both])

@@ -23,7 +23,6 @@ from btplan.model import (
     GroundLiteral,
     Literal,
     Task,
-    instantiate,
     matches,
 )
 from btplan.planner.candidates import StaticBindings, Way
@@ -32,6 +31,7 @@ from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
 from btplan.planner.options import PlannerOptions
 from btplan.planner.protocol import Refiner
+from btplan.planner.reach import building
 
 if TYPE_CHECKING:
     from btplan.planner.search import SubgoalSearch
@@ -98,8 +98,10 @@ class AchieverIndex:
         """h^2 mutexes from the initial state, built on first use."""
         shared = self._shared
         if shared.mutexes is None:
-            shared.mutexes = Mutexes(self.relaxed.actions, self.task.initial_state,
-                                     self.task.domain)
+            relaxed = self.relaxed
+            with building():
+                shared.mutexes = Mutexes(relaxed.actions, self.task.initial_state,
+                                         self.task.domain)
         return shared.mutexes
 
     @property
@@ -109,7 +111,9 @@ class AchieverIndex:
         if shared.search is None:
             from btplan.planner.search import SubgoalSearch  # the last resort: rarely needed
 
-            shared.search = SubgoalSearch(self.relaxed.actions)
+            relaxed = self.relaxed
+            with building():
+                shared.search = SubgoalSearch(relaxed.actions)
         return shared.search
 
     def achievers(

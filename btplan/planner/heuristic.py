@@ -18,6 +18,7 @@ from collections.abc import Callable, Iterable
 
 from btplan.model import ActionTemplate, Atom, GroundAction, Task, ground_literal, instantiate
 from btplan.planner.grounding import PLACEHOLDER, Objects, bindings
+from btplan.planner.reach import building, reachable_bindings
 
 
 COST_CACHE = 8
@@ -25,7 +26,9 @@ COST_CACHE = 8
 
 
 class RelaxedModel:
-    """Every grounding of the domain that static facts allow, indexed for h_add."""
+    """The domain's groundings that can run in some relaxed state reached from the
+    initial state (every one the static facts allow, where a world refines parameters),
+    indexed for h_add."""
 
     def __init__(
         self,
@@ -33,17 +36,22 @@ class RelaxedModel:
         limit: int = 200_000,
         objects: Objects | None = None,
         ground: Callable[[ActionTemplate, tuple[str, ...]], GroundAction] = instantiate,
+        reach: bool = True,
     ) -> None:
+        """`reach`: only the groundings relaxed-reachable from the initial state
+        (btplan/planner/reach.py); off, every grounding the static facts allow."""
         self.actions: list[GroundAction] = []
         table = objects or Objects(task)
-        for template in task.domain.actions:
-            for binding in bindings(
-                task, template, {}, task.initial_state, None, limit, table, optimistic=True
-            ):
-                args = tuple(binding[p.name] for p in template.parameters)
-                action = ground(template, args)
-                if action.cost < math.inf:  # an undefined cost makes it inapplicable
-                    self.actions.append(_optimistic(template, binding, action))
+        with building():
+            self._ground(task, table, limit, reach, ground)
+
+    def _ground(self, task: Task, table: Objects, limit: int, reach: bool,
+                ground: Callable[[ActionTemplate, tuple[str, ...]], GroundAction]) -> None:
+        for template, args in _groundings(task, table, limit, reach):
+            action = ground(template, args)
+            if action.cost < math.inf:  # an undefined cost makes it inapplicable
+                binding = {p.name: a for p, a in zip(template.parameters, args)}
+                self.actions.append(_optimistic(template, binding, action))
         self._pre: list[tuple[Atom, ...]] = [
             tuple(p.atom for p in a.preconditions if p.positive) for a in self.actions
         ]
@@ -195,6 +203,28 @@ class RelaxedModel:
         """Sum of h_add costs; infinite when some atom is unreachable."""
         cost = self.costs(state)
         return sum(cost.get(a, math.inf) for a in atoms)
+
+
+def _groundings(
+    task: Task, table: Objects, limit: int, reach: bool
+) -> list[tuple[ActionTemplate, tuple[str, ...]]]:
+    """The (template, arguments) pairs of the model, by reachability where it applies."""
+    if reach:
+        found = reachable_bindings(task, table)
+        if found is not None:
+            kept: dict[str, int] = {}
+            out = []
+            for template, args in found:  # `limit` per template, as binding enumerates
+                kept[template.name] = kept.get(template.name, 0) + 1
+                if kept[template.name] <= limit:
+                    out.append((template, args))
+            return out
+    return [
+        (template, tuple(binding[p.name] for p in template.parameters))
+        for template in task.domain.actions
+        for binding in bindings(
+            task, template, {}, task.initial_state, None, limit, table, optimistic=True)
+    ]
 
 
 def _optimistic(
