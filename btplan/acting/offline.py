@@ -120,7 +120,9 @@ def plan(
         if last_resort:  # early: later strategies may use up the time
             at = 2 if len(strategies) > 1 and strategies[1].state_agenda else 1
             strategies.insert(at, opts)
-    models = AchieverIndex(task)  # the relaxed model and mutexes, built once for all
+    # The relaxed model and mutexes, built once for all; only the plan changes the state,
+    # so unreachable groundings are left out unless the options keep such bindings.
+    models = AchieverIndex(task, reachable_only=opts.prune_bindings)
     whole = last_resort and options is None
     soft = deadline
     if whole and timeout:  # leave the whole-goal search its share of the time

@@ -57,11 +57,18 @@ class AchieverIndex:
     """Effects of the domain indexed by (predicate, sign), with a lazily built h_add model."""
 
     def __init__(
-        self, task: Task, options: PlannerOptions | None = None, like: AchieverIndex | None = None
+        self, task: Task, options: PlannerOptions | None = None, like: AchieverIndex | None = None,
+        reachable_only: bool = False,
     ) -> None:
         """`like`: an index of the same task whose groundings, relaxed model and mutexes
-        are shared (built once, however many planning attempts use them)."""
+        are shared (built once, however many planning attempts use them).
+
+        `reachable_only`: the relaxed model keeps only the groundings relaxed-reachable
+        from the initial state. Right only where nothing but the plan changes the state
+        (offline planning): an outside agent can make true what no action reaches, and
+        the achievers that need it must stay known."""
         self.task = task
+        self.reachable_only = reachable_only
         self.options = options or PlannerOptions()
         self._shared: _Shared = like._shared if like is not None else _Shared()
         self._by_effect: dict[tuple[str, bool], list[tuple[ActionTemplate, int, Literal]]] = {}
@@ -78,7 +85,8 @@ class AchieverIndex:
     def relaxed(self) -> RelaxedModel:
         shared = self._shared
         if shared.relaxed is None:
-            shared.relaxed = RelaxedModel(self.task, objects=self.objects, ground=self.ground)
+            shared.relaxed = RelaxedModel(self.task, objects=self.objects, ground=self.ground,
+                                           reach=self.reachable_only)
         return shared.relaxed
 
     def ground(self, template: ActionTemplate, args: tuple[str, ...]) -> GroundAction:

@@ -72,3 +72,17 @@ def test_actions_that_can_never_run_are_not_grounded(tmp_path: Path) -> None:
     assert ("walk", ("r3", "r4")) in old and ("walk", ("r3", "r4")) not in new
     # a static negation and an equality still filter
     assert not any(key[0] == "unlock" for key in new) and len(new) < len(old)
+
+
+def test_only_offline_planning_leaves_unreachable_groundings_out(tmp_path: Path) -> None:
+    # an outside agent could hand the robot k2 or open r3-r4, which no action reaches:
+    # an index for acting must keep the achievers that need them
+    from btplan.planner.achievers import AchieverIndex
+
+    (tmp_path / "domain.pddl").write_text(DOOR)
+    (tmp_path / "p.pddl").write_text(ROOMS)
+    task = load([str(tmp_path / "domain.pddl"), str(tmp_path / "p.pddl")])
+    acting = keys(AchieverIndex(task).relaxed)
+    offline = keys(AchieverIndex(task, reachable_only=True).relaxed)
+    assert ("walk", ("r3", "r4")) in acting and ("walk", ("r3", "r4")) not in offline
+    assert set(offline) < set(acting)
