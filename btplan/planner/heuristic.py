@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import heapq
 import math
-from collections.abc import Callable, Iterable, Iterator, Mapping
+from collections.abc import Callable, Iterable
 
 from btplan.model import ActionTemplate, Atom, GroundAction, Task, ground_literal, instantiate
 from btplan.planner.grounding import PLACEHOLDER, Objects, bindings
@@ -54,7 +54,7 @@ class RelaxedModel:
         self._waiting = [len(set(pre)) for pre in self._pre]
         self._free = [i for i, n in enumerate(self._waiting) if n == 0]
         self._producers: dict[Atom, list[GroundAction]] | None = None
-        self._cache: dict[frozenset[Atom], Costs] = {}
+        self._cache: dict[frozenset[Atom], dict[Atom, float]] = {}
         self._encode()
 
     def _encode(self) -> None:
@@ -74,7 +74,7 @@ class RelaxedModel:
             for atom in set(pre):
                 self._by_pre_id[ids[atom]].append(i)
 
-    def costs(self, state: frozenset[Atom]) -> Mapping[Atom, float]:
+    def costs(self, state: frozenset[Atom]) -> dict[Atom, float]:
         """h_add cost of every reachable atom from `state` (generalised Dijkstra)."""
         cached = self._cache.get(state)
         if cached is not None:
@@ -83,7 +83,9 @@ class RelaxedModel:
             cost = self._sweep_levels(state)
         else:
             cost = self._sweep_heap(state)
-        found = Costs(self._ids, cost, state)
+        inf = math.inf
+        found = {a: 0.0 for a in state}
+        found.update({atom: value for atom, value in zip(self._atoms, cost) if value < inf})
         if len(self._cache) >= COST_CACHE:
             del self._cache[next(iter(self._cache))]
         self._cache[state] = found
@@ -276,38 +278,3 @@ def _optimistic(
         "delete": tuple(a for a in action.delete if PLACEHOLDER not in a.args),
     })
 
-
-class Costs(Mapping[Atom, float]):
-    """The h_add costs of one state: read through the atom numbering, not copied.
-
-    Copying tens of thousands of costs into a dictionary per state cost more than the
-    few lookups the planner then makes.
-    """
-
-    __slots__ = ("_ids", "_cost", "_state")
-
-    def __init__(self, ids: dict[Atom, int], cost: list[float], state: frozenset[Atom]) -> None:
-        self._ids, self._cost, self._state = ids, cost, state
-
-    def __getitem__(self, atom: Atom) -> float:
-        at = self._ids.get(atom)
-        value = math.inf if at is None else self._cost[at]
-        if value < math.inf:
-            return value
-        if atom in self._state:
-            return 0.0
-        raise KeyError(atom)
-
-    def __contains__(self, atom: object) -> bool:
-        at = self._ids.get(atom)  # type: ignore[call-overload]
-        return (at is not None and self._cost[at] < math.inf) or atom in self._state
-
-    def __iter__(self) -> Iterator[Atom]:
-        yield from self._state
-        state, cost = self._state, self._cost
-        for atom, at in self._ids.items():
-            if cost[at] < math.inf and atom not in state:
-                yield atom
-
-    def __len__(self) -> int:
-        return sum(1 for _ in self)
