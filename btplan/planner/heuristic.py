@@ -76,6 +76,7 @@ class RelaxedModel:
         self._atoms = list(ids)
         self._add_ids = [tuple(dict.fromkeys(ids[a] for a in act.add)) for act in self.actions]
         self._action_cost = [float(act.cost) for act in self.actions]
+        self._integral = all(c.is_integer() and 0 <= c < 2 ** 40 for c in self._action_cost)
         self._by_pre_id: list[list[int]] = [[] for _ in ids]
         for i, pre in enumerate(self._pre):
             for atom in set(pre):
@@ -86,16 +87,33 @@ class RelaxedModel:
         cached = self._cache.get(state)
         if cached is not None:
             return cached
-        ids, by_pre, adds, action_cost = self._ids, self._by_pre_id, self._add_ids, \
-            self._action_cost
+        if self._integral:
+            cost = self._sweep_levels(state)
+        else:
+            cost = self._sweep_heap(state)
         inf = math.inf
-        cost = [inf] * len(ids)
-        queue: list[tuple[float, int]] = []
+        found = {a: 0.0 for a in state}
+        found.update({atom: value for atom, value in zip(self._atoms, cost) if value < inf})
+        if len(self._cache) >= COST_CACHE:
+            del self._cache[next(iter(self._cache))]
+        self._cache[state] = found
+        return found
+
+    def _start(self, state: frozenset[Atom]) -> list[float]:
+        """Costs with the state's atoms at 0 and everything else unknown."""
+        ids = self._ids
+        cost = [math.inf] * len(ids)
         for atom in state:
             at = ids.get(atom)
             if at is not None:
                 cost[at] = 0.0
-                queue.append((0.0, at))
+        return cost
+
+    def _sweep_heap(self, state: frozenset[Atom]) -> list[float]:
+        """Dijkstra with a heap of atoms: right for any non-negative action costs."""
+        by_pre, adds, action_cost = self._by_pre_id, self._add_ids, self._action_cost
+        cost = self._start(state)
+        queue = [(0.0, at) for at, value in enumerate(cost) if value == 0.0]
         heapq.heapify(queue)
         waiting = list(self._waiting)
         summed = [0.0] * len(waiting)  # the costs of an action's preconditions so far
@@ -105,7 +123,7 @@ class RelaxedModel:
                 if action_cost[i] < cost[at]:
                     cost[at] = action_cost[i]
                     push(queue, (action_cost[i], at))
-        done = [False] * len(ids)
+        done = [False] * len(cost)
         while queue:
             value, at = pop(queue)
             if done[at] or value > cost[at]:
@@ -120,15 +138,55 @@ class RelaxedModel:
                         if total < cost[added]:
                             cost[added] = total
                             push(queue, (total, added))
-        found = {a: 0.0 for a in state}
-        atoms = self._atoms
-        for at, value in enumerate(cost):
-            if value < inf:
-                found[atoms[at]] = value
-        if len(self._cache) >= COST_CACHE:
-            del self._cache[next(iter(self._cache))]
-        self._cache[state] = found
-        return found
+        return cost
+
+    def _sweep_levels(self, state: frozenset[Atom]) -> list[float]:
+        """Dijkstra with one bucket per cost value, for whole-number action costs.
+
+        Sums of whole numbers are exact in any order, so the values are those of
+        `_sweep_heap`; popping a heap entry per atom was a third of the time on large
+        problems, and only the few distinct values need the heap here.
+        """
+        by_pre, adds, action_cost = self._by_pre_id, self._add_ids, self._action_cost
+        cost = self._start(state)
+        buckets: dict[float, list[int]] = {
+            0.0: [at for at, value in enumerate(cost) if value == 0.0]}
+        levels = [0.0]
+        for i in self._free:
+            for at in adds[i]:
+                value = action_cost[i]
+                if value < cost[at]:
+                    cost[at] = value
+                    if value in buckets:
+                        buckets[value].append(at)
+                    else:
+                        buckets[value] = [at]
+                        heapq.heappush(levels, value)
+        waiting = list(self._waiting)
+        summed = [0.0] * len(waiting)
+        done = [False] * len(cost)
+        while levels:
+            value = heapq.heappop(levels)
+            bucket = buckets[value]
+            for at in bucket:  # grows while read when an action costs nothing
+                if done[at] or value > cost[at]:
+                    continue
+                done[at] = True
+                for i in by_pre[at]:
+                    summed[i] += value
+                    waiting[i] -= 1
+                    if waiting[i] == 0:
+                        total = summed[i] + action_cost[i]
+                        for added in adds[i]:
+                            if total < cost[added]:
+                                cost[added] = total
+                                if total in buckets:
+                                    buckets[total].append(added)
+                                else:
+                                    buckets[total] = [added]
+                                    heapq.heappush(levels, total)
+            del buckets[value]
+        return cost
 
     def reachable(self, state: frozenset[Atom], targets: Iterable[Atom]) -> bool:
         """Whether every target can be reached from `state` ignoring deletes.
@@ -249,3 +307,4 @@ def _optimistic(
         "add": tuple(a for a in action.add if PLACEHOLDER not in a.args),
         "delete": tuple(a for a in action.delete if PLACEHOLDER not in a.args),
     })
+

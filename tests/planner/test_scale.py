@@ -69,15 +69,22 @@ def reference_reachable(model: RelaxedModel, state: frozenset[Atom],
 @pytest.mark.parametrize(("name", "size"), [("blocksworld", {"blocks": 5}),
                                             ("gripper", {"balls": 3}),
                                             ("logistics", {"packages": 2})])
+@pytest.mark.parametrize("levels", [True, False])
 def test_h_add_and_reachability_match_a_reference(
-        tmp_path: Path, name: str, size: dict[str, int]) -> None:
+        tmp_path: Path, name: str, size: dict[str, int], levels: bool) -> None:
     task = task_of(tmp_path, name, 1, **size)
     model = RelaxedModel(task)
+    assert model._integral  # unit costs: one bucket per value unless told otherwise
+    model._integral = levels  # the heap, used when some action cost is fractional
     rng = random.Random(3)
     state = task.initial_state
     atoms = sorted({a for action in model.actions for a in action.add})
     for _ in range(6):
-        assert model.costs(state) == reference_costs(model, state)
+        costs = model.costs(state)
+        reference = reference_costs(model, state)
+        assert costs == reference and dict(costs) == reference
+        assert all(costs.get(a) == reference.get(a) and (a in costs) == (a in reference)
+                   for a in atoms)
         avoided = set(rng.sample(atoms, 2))
         reached = reference_reachable(model, state, avoided)
         targets = rng.sample(atoms, 5)
