@@ -63,7 +63,10 @@ def loop_reason(expansions: int, world: Any) -> str:
     """The world came back to a state it was in, under the same tree."""
     recent = [str(a) for a in getattr(world, "executed", [])[-6:]]
     tail = f"; last actions: {', '.join(recent)}" if recent else ""
+    dead_ends = getattr(world, "dead_ends", None)  # a world may know what it cannot do
+    found = dead_ends() if callable(dead_ends) else []
+    known = f"; {'; '.join(found)}" if found else ""
     return (
         "the world came back to an earlier state with no new expansion "
-        f"(after {expansions} expansions){tail}"
+        f"(after {expansions} expansions){known}{tail}"
     )

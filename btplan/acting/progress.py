@@ -7,7 +7,9 @@ counts in `outside_changes` (agents that act while the robot does, as in the PyB
 world). In a `continuous` world, where facts change while an action runs (a robot
 driving past a cube), states are compared only on ticks where an action ended: passing
 by the same place twice within one action is not a loop, and a loop of actions still
-repeats its states there.
+repeats its states there. A world that learns from a failed action (the PyBullet arm
+remembers the sides of a cube it failed to grasp from, and tries another) counts what it
+learned in `lessons`: a state seen before a new lesson is not a loop yet.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ class Circles:
     """The states seen since the last outside change, each with the tree's size then."""
 
     def __init__(self) -> None:
-        self._seen: set[tuple[frozenset[Atom], int]] = set()
+        self._seen: set[tuple[frozenset[Atom], int, int]] = set()
         self._outside = 0
         self._ended = 0
 
@@ -40,7 +42,7 @@ class Circles:
         self._ended = ended
         if after == before or not boundary:
             return False
-        key = (after, expansions)
+        key = (after, expansions, int(getattr(world, "lessons", 0)))
         if key in self._seen:
             return True
         self._seen.add(key)

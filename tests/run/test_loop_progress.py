@@ -40,3 +40,24 @@ def test_facts_that_flicker_while_an_action_runs_are_not_a_loop() -> None:
     result = BlendedLoop(task, world).run(100)
     assert result.reached
     assert [str(a) for a in world.executed][-1] == "Place(cube, goal)"
+
+
+class _World:
+    """A stand-in world for `Circles`: only the counters the check reads."""
+
+    continuous = False
+    outside_changes = 0
+    lessons = 0
+
+
+def test_a_state_seen_again_after_a_new_lesson_is_not_a_loop() -> None:
+    from btplan.acting.progress import Circles
+
+    circles, world = Circles(), _World()
+    near, away = frozenset({PASSING}), frozenset()
+    assert not circles.repeated(world, away, near, 3)
+    assert not circles.repeated(world, near, away, 3)
+    world.lessons = 1  # the world learned that the last try cannot work: another follows
+    assert not circles.repeated(world, away, near, 3)
+    assert not circles.repeated(world, near, away, 3)
+    assert circles.repeated(world, away, near, 3)  # nothing learned since: a loop

@@ -11,7 +11,7 @@ from __future__ import annotations
 from btplan.worlds.pybullet.geometry import clearance, distance, facing, grid, ring
 from btplan.worlds.pybullet.motion import Pose2
 from btplan.worlds.pybullet.scene import Point
-from btplan.worlds.pybullet.state import KEY_DIGITS, SceneState
+from btplan.worlds.pybullet.state import KEY_DIGITS, MISSED, SceneState
 
 GRID = 0.25  # metres between candidate placement poses
 ARM_NEAR, ARM_FAR = 0.45, 0.68
@@ -21,14 +21,16 @@ ARM_NEAR, ARM_FAR = 0.45, 0.68
 def approach_pose(world: SceneState, name: str, avoid_cubes: bool = True) -> Pose2 | None:
     """A collision-free base pose next to a location, facing it, closest to the robot."""
     target = world.location(name)
-    asked = ("approach", name, avoid_cubes, target)
+    missed = world.missed_poses(name)
+    asked = ("approach", name, avoid_cubes, target, len(missed))
     if asked in world.sim.memo:  # asked again before anything moved
         return world.sim.memo[asked]  # type: ignore[return-value]
-    world.sim.memo[asked] = pose = _approach(world, target, name, avoid_cubes)
+    world.sim.memo[asked] = pose = _approach(world, target, name, avoid_cubes, missed)
     return pose
 
 
-def _approach(world: SceneState, target: Point, name: str, avoid_cubes: bool) -> Pose2 | None:
+def _approach(world: SceneState, target: Point, name: str, avoid_cubes: bool,
+              missed: list[Pose2]) -> Pose2 | None:
     reach = world.scene.robot_radius + world.scene.cube_size / 2 + 0.08
     cubes = world.floor_cubes(name, world.held) if avoid_cubes else []
     # The free spots depend on where the target and the other cubes are: asked every tick
@@ -39,6 +41,8 @@ def _approach(world: SceneState, target: Point, name: str, avoid_cubes: bool) ->
     if not isinstance(spots, list):
         spots = [q for q in ring(target, reach) if world.sim.base_free(q[0], q[1], cubes, 0.02)]
         world.remember(key, spots)
+    # Sides the arm already failed from are left out, the nearest untried side first.
+    spots = [q for q in spots if all(distance(q, m) > MISSED for m in missed)]
     if not spots:
         return None
     best = min(spots, key=lambda q: (round(distance(q, world.base), 3), q))

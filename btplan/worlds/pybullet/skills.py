@@ -119,7 +119,7 @@ def pick(state: SceneState, timings: Timings, cube: str) -> Script:
     if reach is None:
         # Out of reach from here, or every grasp collides: not near after all, so that
         # the tree drives up to it (MoveTo ends at a pose facing it).
-        state.out_of_reach[cube] = state.location(cube)
+        state.missed_reach(cube)
         return FAILURE
     state.out_of_reach.pop(cube, None)
     yield from arm.opened(state)

@@ -22,6 +22,8 @@ REST_SPEED = 0.25    # m/s: slower than this, a cube on the floor has landed (it
 LIFTED = 0.004       # metres above its resting height a held cube must be
 QUERIES_KEPT = 5000  # collision query answers kept before they are all forgotten
 KEY_DIGITS = 4       # cube positions in the keys of those answers: to 0.1 mm
+MOVED = 0.02         # metres a cube must move before a failed reach of it is forgotten
+MISSED = 0.1         # metres around a base pose a grasp failed from: the same side of the cube
 
 
 class SceneState:
@@ -41,6 +43,10 @@ class SceneState:
         self.out_of_reach: dict[str, Point] = {}
         """Cubes the arm failed to reach from where the base stands, and where they were:
         not `near` until the robot drives up to them again (or they move)."""
+        self.missed_from: dict[str, tuple[Point, list[Pose2]]] = {}
+        """Base poses from which a grasp of a cube failed, and where the cube was then: the
+        approach sampler offers other sides of the cube, so that MoveTo does not bring the
+        robot back to a pose where Pick is known to fail."""
         self.trajectories: dict[str, Trajectory] = {}
         self.poses: dict[str, Point] = {}
         self.queries: dict[object, object] = {}
@@ -95,7 +101,8 @@ class SceneState:
         paths = tuple((t.name, t.target, t.path, t.goal, frozenset(t.clearing), t.executing,
                        t.layout) for t in self.trajectories.values())
         return (self.handled, self.releasing, frozenset(self.carried),
-                tuple(self.out_of_reach.items()), tuple(self.poses.items()), paths)
+                tuple(self.out_of_reach.items()), tuple(self.poses.items()), paths,
+                tuple((c, len(m[1])) for c, m in self.missed_from.items()))
 
     def check_objects(self) -> None:
         known = set(self.cube_names) | {r.name for r in self.scene.regions}
@@ -144,9 +151,27 @@ class SceneState:
             return False
         at = self.location(name)
         missed = self.out_of_reach.get(name)
-        if missed is not None and distance(missed, at) < 0.02:
+        if missed is not None and distance(missed, at) < MOVED:
             return False
         return distance(self.base, at) <= self.scene.near
+
+    def missed_reach(self, cube: str) -> None:
+        """The arm cannot grasp `cube` from where the base stands: not `near` from here."""
+        at = self.location(cube)
+        self.out_of_reach[cube] = at
+        known = self.missed_from.get(cube)
+        poses = known[1] if known is not None and distance(known[0], at) < MOVED else []
+        if all(distance(self.base, m) > MISSED for m in poses):
+            poses = [*poses, self.base]  # a side tried again adds nothing to go round on
+        self.missed_from[cube] = (at, poses)
+
+    def missed_poses(self, name: str) -> list[Pose2]:
+        """Base poses a grasp of `name` failed from, while it has not moved since."""
+        known = self.missed_from.get(name)
+        if known is None or name not in self.sim.cubes or not self.present(name) \
+                or distance(known[0], self.location(name)) >= MOVED:
+            return []
+        return known[1]
 
     def on(self, cube: str, place: str) -> bool:
         """`cube` came to rest inside region `place`, or at pose `place`."""

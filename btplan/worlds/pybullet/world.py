@@ -114,6 +114,24 @@ class PyBulletWorld(SkillWorld[SceneState, Conditions]):
         """Physics steps in which the scene's agents pushed a cube (read by the loop)."""
         return self.state.sim.outside_changes
 
+    @property
+    def lessons(self) -> int:
+        """Sides of a cube the arm failed to grasp from (read by the loop): after a new one
+        the robot tries another side, so a state seen before is not a loop yet."""
+        return sum(len(poses) for _, poses in self.state.missed_from.values())
+
+    def dead_ends(self) -> list[str]:
+        """Why the loop may be going round (read by its diagnosis): a cube the arm failed to
+        grasp from every side the base can stand on, e.g. one pushed flush against a wall."""
+        state, found = self.state, []
+        for cube in state.missed_from:
+            tried = state.missed_poses(cube)
+            if tried and samplers.approach_pose(state, cube) is None \
+                    and samplers.approach_pose(state, cube, avoid_cubes=False) is None:
+                found.append(f"the arm found no grasp of {cube} from any of the {len(tried)} "
+                             "sides the base can stand on")
+        return found
+
     def scene_agents(self) -> list[SceneAgents]:
         """The scene's scripted external events, as one agent acting before each tick."""
         return [self.agents]

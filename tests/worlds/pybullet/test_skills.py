@@ -14,6 +14,7 @@ from sim_scenes import write_scene, youbot_task
 
 from btplan.bt import FAILURE, RUNNING, SUCCESS
 from btplan.worlds.pybullet import PyBulletWorld, open_world
+from btplan.worlds.pybullet.geometry import distance
 from btplan.worlds.pybullet.robot import CARRY
 
 TASK = youbot_task()
@@ -117,6 +118,72 @@ def test_closing_the_world_halts_a_running_skill_safely(room: PyBulletWorld) -> 
 
 def test_pick_fails_on_a_cube_out_of_the_arms_reach(room: PyBulletWorld) -> None:
     assert run(room, ("Pick", ("blue",)))[0] is FAILURE
+
+
+AGAINST_A_WALL = """
+[world]
+bounds = [-1.0, 3.0, -1.5, 1.5]
+
+[robot]
+start = [0.0, 0.0, 0.0]
+
+[[wall]]
+name = "wall"
+center = [1.0, 0.0]
+size = [0.2, 2.0]
+
+[[region]]
+name = "goal"
+min = [-0.1, -0.9]
+max = [0.7, -0.3]
+
+[[cube]]
+name = "green"
+at = [0.875, 0.0]
+
+[[cube]]
+name = "blue"
+at = [0.0, 1.0]
+
+[[cube]]
+name = "red"
+
+[[cube]]
+name = "yellow"
+"""
+
+
+def test_a_side_the_grasp_failed_from_is_not_offered_again(tmp_path: Path) -> None:
+    from btplan.worlds.pybullet.samplers import approach_pose
+    from btplan.worlds.pybullet.state import MISSED
+
+    world = open_world(TASK, write_scene(tmp_path, AGAINST_A_WALL), seed=1)
+    try:
+        state = world.state
+        first = approach_pose(state, "green")
+        assert first is not None
+        state.sim.set_robot(first)  # facing the cube, the hand's back to the wall's face
+        assert world.check(("near", ("green",)))
+        assert run(world, ("Pick", ("green",)))[0] is FAILURE
+        assert not world.check(("near", ("green",))) and world.lessons == 1
+        other = approach_pose(state, "green")
+        assert other is not None and distance(other, first) > MISSED
+        assert world.dead_ends() == []  # other sides are left to try
+        for _ in range(16):  # flush against the wall, the hand fits on no side
+            pose = approach_pose(state, "green")
+            if pose is None:
+                break
+            state.sim.set_robot(pose)
+            state.out_of_reach.pop("green")  # as MoveTo does at the end of its path
+            assert run(world, ("Pick", ("green",)))[0] is FAILURE
+        assert approach_pose(state, "green") is None
+        assert world.dead_ends() == [
+            f"the arm found no grasp of green from any of the {world.lessons} sides the base "
+            "can stand on"]
+        state.put("green", (0.3, 0.8))  # moved: every side is worth a try again
+        assert state.missed_poses("green") == []
+    finally:
+        world.close()
 
 
 def test_place_puts_the_cube_down_where_on_reads_it(room: PyBulletWorld) -> None:
