@@ -171,6 +171,8 @@ def apply(world: SceneState, pusher: Pusher | None, event: Event) -> str:
 
 SPOT_TRIES = 20
 """Random spots tried for a shoved cube before the agent gives up for this tick."""
+PUSH_STEP = 0.05
+"""Metres between the points of a push's line checked for walls (a wall is 0.2 m thick)."""
 
 
 class Shove:
@@ -212,14 +214,27 @@ class Shove:
 
 
 def _free_spot(state: SceneState, cube: str, seed: float) -> tuple[float, float] | None:
-    """A random spot of the floor where `cube` fits, away from the robot."""
+    """A random spot of the floor where `cube` fits, away from the robot, that a straight
+    push gets it to: a target behind a wall would leave the cube pressed against the wall,
+    where no hand fits round it, and the run would test the arm rather than the tree."""
     rng = random.Random(seed)
     x0, x1, y0, y1 = state.scene.bounds
     others = [c for c in state.floor_cubes(cube) if c not in state.carried]
     keep = state.scene.robot_radius + state.scene.cube_size
+    start = state.location(cube)
     for _ in range(SPOT_TRIES):
         x, y = rng.uniform(x0, x1), rng.uniform(y0, y1)
         if (math.dist((x, y), state.base[:2]) > keep
-                and state.sim.cube_fits(x, y, others)):
+                and state.sim.cube_fits(x, y, others)
+                and _straight_push(state, start, (x, y))):
             return (x, y)
     return None
+
+
+def _straight_push(state: SceneState, start: tuple[float, float],
+                   end: tuple[float, float]) -> bool:
+    """No wall between `start` and `end` (sampled every PUSH_STEP metres)."""
+    steps = max(1, math.ceil(math.dist(start, end) / PUSH_STEP))
+    return all(state.sim.cube_fits(start[0] + (end[0] - start[0]) * k / steps,
+                                   start[1] + (end[1] - start[1]) * k / steps, [], 0.0)
+               for k in range(1, steps + 1))

@@ -122,3 +122,23 @@ to = [4.5, 0.0]
 """
     (event,) = load_scene(write_scene(tmp_path, events=events)).events
     assert event.origin == (4.5, -2.4) and event.to == (4.5, 0.0)
+
+
+def test_a_shove_targets_only_spots_a_straight_push_reaches() -> None:
+    from sim_scenes import YOUBOT_SCENE
+
+    from btplan.worlds.pybullet.agents import _free_spot
+
+    world = open_world(TASK, str(YOUBOT_SCENE), seed=0)
+    try:
+        state = world.state
+        start = at(world, "green")  # west of the wall between the rooms (x 3.9 to 4.1)
+        spots = [s for s in (_free_spot(state, "green", k / 40) for k in range(40)) if s]
+        assert len(spots) > 20
+        for x, y in spots:
+            if x > 3.9 - state.scene.cube_size / 2:  # past the wall: through the doorway
+                crossing = start[1] + (y - start[1]) * (3.9 - start[0]) / (x - start[0])
+                assert abs(crossing) < 0.6
+        assert any(x > 4.1 for x, _ in spots)  # the far room is still a target
+    finally:
+        world.close()
