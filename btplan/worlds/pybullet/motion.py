@@ -56,6 +56,13 @@ def seed_rng(seed: int) -> None:
         _seeded.append(seed)
 
 
+def ompl_yaw(yaw: float) -> float:
+    """`yaw` in [-pi, pi): OMPL's SE2 space takes a state at exactly +pi (a robot facing
+    due west, as `atan2` gives it) for out of bounds, and the solve fails with no word."""
+    wrapped = math.remainder(yaw, math.tau)
+    return wrapped - math.tau if wrapped >= math.pi else wrapped
+
+
 def plan_se2(
     start: Pose2,
     goal: Pose2,
@@ -91,7 +98,7 @@ def plan_se2(
     for state, pose in ((s, start), (g, goal)):
         state.setX(pose[0])
         state.setY(pose[1])
-        state.setYaw(pose[2])
+        state.setYaw(ompl_yaw(pose[2]))
     setup.setStartAndGoalStates(s, g)
     setup.setPlanner(og.RRTConnect(info))
     began = time.perf_counter()

@@ -333,3 +333,22 @@ def test_a_seed_fixes_the_planned_path() -> None:
     assert first.startswith("((1.0, -1.5, 0.0),")
     assert plan(7) == first
     assert plan(8) != first
+
+
+def test_a_base_path_starts_or_ends_facing_due_west() -> None:
+    import math
+
+    from btplan.worlds.pybullet.motion import ompl_yaw, plan_se2
+
+    west = math.atan2(0.0, -1.0)  # exactly pi, as a pose facing a target west of it gets
+    assert ompl_yaw(west) == -math.pi and ompl_yaw(-math.pi) == -math.pi
+    assert ompl_yaw(3 * math.pi / 2) == -math.pi / 2
+
+    def free(x: float, y: float) -> bool:
+        return abs(x) > 0.5 or abs(y) < 0.3  # a wall with a door at y = 0
+
+    bounds = (-2.0, 2.0, -2.0, 2.0)
+    there = plan_se2((-1.5, 1.0, 0.0), (1.5, -1.0, west), free, bounds, 2.0)
+    back = plan_se2((1.5, -1.0, west), (-1.5, 1.0, 0.0), free, bounds, 2.0)
+    assert there is not None and back is not None
+    assert there.path[-1] == (1.5, -1.0, west) and back.path[0] == (1.5, -1.0, west)
