@@ -127,16 +127,14 @@ def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: s
                    else replace(acting.ACTING_OPTIONS, stall_limit=max_ticks,
                                 expansions_per_tick=EXPANSIONS))
         # Look-ahead refines later actions before the robot moves; in the simulator their
-        # trajectories would start from where the robot stands now, and go stale. Scoped
-        # moves are measured in the symbolic world only: in the simulator's shove sweep
-        # runs with them failed more often, not yet explained (docs/reactivity.md).
+        # trajectories would start from where the robot stands now, and go stale.
         started = time.process_time()
         models = acting.task_models(task, options)
         setup = time.process_time() - started
         outcome = acting.run(task, agents=agents, world=world, seed=seed,
                              max_ticks=max_ticks, options=options, models=models,
                              look_ahead=method == "btplan" and job.sim == "symbolic",
-                             scope_moves=method == "btplan" and job.sim == "symbolic")
+                             scope_moves=method == "btplan")
     finally:
         if hasattr(world, "close"):
             world.close()
