@@ -95,3 +95,44 @@ def test_a_misspelt_command_is_still_named_by_the_whole_app() -> None:
     done = subprocess.run([sys.executable, "-m", "btplan", "plna", "x"], capture_output=True,
                           text=True, timeout=300)
     assert done.returncode == 2 and "No such command 'plna'" in done.stderr
+
+
+def test_the_collector_is_off_while_starting_and_on_while_planning(tmp_path: Path) -> None:
+    """Start-up and reading collect nothing (everything they make lives to the end), but
+    planning makes and drops objects: the collector must run then, and a library caller's
+    collector is left as it was."""
+    domain_text, problem_text = generate("blocksworld", "pddl", seed=1, blocks=3)
+    (tmp_path / "d.pddl").write_text(domain_text)
+    (tmp_path / "p.pddl").write_text(problem_text)
+    argv = ["btplan", "plan", str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl"),
+            "-o", str(tmp_path / "tree.json")]
+    script = f"""
+import gc, sys
+import btplan.acting.offline as offline
+seen = []
+load, plan = offline.load, offline.plan
+def noting_load(*args, **kwargs):
+    seen.append(("load", gc.isenabled()))
+    return load(*args, **kwargs)
+def noting_plan(*args, **kwargs):
+    seen.append(("plan", gc.isenabled(), gc.get_threshold()[0]))
+    return plan(*args, **kwargs)
+offline.load, offline.plan = noting_load, noting_plan
+from btplan.cli import main
+from btplan.cli.planning import plan_and_write
+sys.argv = {argv!r}
+try:
+    main()
+except SystemExit as done:
+    assert done.code == 0, done.code
+seen.append(("exit", gc.isenabled()))
+gc.set_threshold(700, 10, 10)
+gc.enable()
+plan_and_write(*sys.argv[2:4], out=sys.argv[5], quiet=True)
+print(seen)
+"""
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=300, check=True)
+    assert done.stdout.splitlines()[-1] == str(
+        [("load", False), ("plan", True, 10_000), ("exit", False),
+         ("load", True), ("plan", True, 700)])
