@@ -22,7 +22,7 @@ HEAVY = ("rich", "pydantic", "pybullet", "numpy", "matplotlib", "email", "import
          "dataclasses", "inspect", "tempfile", "difflib", "traceback", "importlib.resources",
          "random", "btplan.lang.writers", "btplan.planner.search", "btplan.planner.rescue",
          "btplan.planner.backjump", "btplan.planner.protect", "btplan.bt.debug",
-         "btplan.bt.parallel")
+         "btplan.bt.parallel", "json", "signal", "contextvars")
 """Modules (and their submodules) that neither start-up nor `btplan plan` of well-formed
 PDDL needs (lark builds parsers: it reads .bt files and words PDDL syntax errors; typer
 builds the command line for help, errors and the other commands, cli/lean.py). The
@@ -30,15 +30,19 @@ standard library's share: dataclasses (and inspect beneath it) compile every cla
 methods at import, which btplan/records.py avoids; tempfile, difflib (for "did you
 mean"), traceback (for --debug) and importlib.resources (for shipped domains by name)
 serve only other paths, random only worlds that fail actions on purpose, and btplan's
-writers only messages about mistakes. Of the planner, the last-resort search and what
+writers only messages about mistakes; json is imported only for a string the tree
+writer cannot write unchanged (or a trace), and the signal handlers and the `--debug`
+switch do without `signal`'s enums and `contextvars`. Of the planner, the last-resort search and what
 turns its plan into a subtree (search, rescue), the blame of choices when planning stops
 (backjump), the `protect_goals` option (protect), `--debug`'s strict world and Parallel
 nodes are imported when first used."""
 
 REPORT = """
-import json, sys
+import sys
 {body}
-print(json.dumps(sorted(sys.modules)))
+modules = sorted(sys.modules)
+import json
+print(json.dumps(modules))
 """
 
 
