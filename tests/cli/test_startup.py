@@ -22,7 +22,8 @@ HEAVY = ("rich", "pydantic", "pybullet", "numpy", "matplotlib", "email", "import
          "dataclasses", "inspect", "tempfile", "difflib", "traceback", "importlib.resources",
          "random", "btplan.lang.writers", "btplan.planner.search", "btplan.planner.rescue",
          "btplan.planner.backjump", "btplan.planner.protect", "btplan.bt.debug",
-         "btplan.bt.parallel", "json", "signal", "contextvars")
+         "btplan.bt.parallel", "btplan.bt.trace", "btplan.bt.blackboard", "json", "signal",
+         "contextvars")
 """Modules (and their submodules) that neither start-up nor `btplan plan` of well-formed
 PDDL needs (lark builds parsers: it reads .bt files and words PDDL syntax errors; typer
 builds the command line for help, errors and the other commands, cli/lean.py). The
@@ -34,8 +35,8 @@ writers only messages about mistakes; json is imported only for a string the tre
 writer cannot write unchanged (or a trace), and the signal handlers and the `--debug`
 switch do without `signal`'s enums and `contextvars`. Of the planner, the last-resort search and what
 turns its plan into a subtree (search, rescue), the blame of choices when planning stops
-(backjump), the `protect_goals` option (protect), `--debug`'s strict world and Parallel
-nodes are imported when first used."""
+(backjump), the `protect_goals` option (protect), `--debug`'s strict world, Parallel
+nodes, per-tick traces and the blackboard of BT.CPP trees are imported when first used."""
 
 REPORT = """
 import sys
