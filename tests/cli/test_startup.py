@@ -86,6 +86,33 @@ def test_a_whole_plan_run_imports_nothing_heavy(tmp_path: Path) -> None:
     assert heavy(modules) == []
 
 
+def test_a_whole_plan_run_compiles_no_source(tmp_path: Path) -> None:
+    """Byte code is loaded, never compiled: the first compile of a process costs several
+    milliseconds (named tuples and dataclasses compile source when a class is made)."""
+    domain_text, problem_text = generate("blocksworld", "pddl", seed=1, blocks=4)
+    (tmp_path / "d.pddl").write_text(domain_text)
+    (tmp_path / "p.pddl").write_text(problem_text)
+    argv = ["btplan", "plan", str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl"),
+            "-o", str(tmp_path / "tree.json"), "--plan-out", str(tmp_path / "plan.txt")]
+    script = f"""
+import compileall, sys
+import btplan
+compileall.compile_dir(btplan.__path__[0], quiet=1)  # as an installed package has it
+compiled = []
+sys.addaudithook(lambda event, args: event == "compile" and compiled.append(args[1]))
+from btplan.cli import main
+sys.argv = {argv!r}
+try:
+    main()
+except SystemExit as done:
+    assert done.code == 0, done.code
+print(compiled)
+"""
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=300, check=True)
+    assert done.stdout.splitlines()[-1] == "[]"
+
+
 def test_the_console_script_builds_only_the_command_it_runs() -> None:
     script = ("import sys\nfrom btplan.cli import app, only_the_command_asked_for\n"
               "only_the_command_asked_for(sys.argv[1:2])\n"
