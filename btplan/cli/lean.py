@@ -18,7 +18,7 @@ from __future__ import annotations
 import os
 import re
 import sys
-from typing import Any
+from typing import Any, NoReturn
 
 from btplan.cli.planning import FORMATS
 
@@ -113,4 +113,19 @@ def main_fast() -> None:
     if args[:1] == ["plan"]:
         code = plan_fast(args[1:])
         if code is not None:
-            sys.exit(code)
+            leave(code)
+
+
+def leave(code: int) -> NoReturn:
+    """End the process with `code` once standard output and error are flushed, without
+    tearing the interpreter down: the outputs are written and closed by then, btplan
+    registers nothing to run at exit, and freeing every module and object one by one
+    took about 5 ms of CPU, a tenth of a small plan run. Should a flush fail (a closed
+    pipe), the interpreter exits as usual and reports it as it always did. Code that
+    calls `main` and wants it to raise SystemExit replaces this with `sys.exit`."""
+    try:
+        sys.stdout.flush()
+        sys.stderr.flush()
+    except (OSError, ValueError):
+        sys.exit(code)
+    os._exit(code)

@@ -79,7 +79,7 @@ def test_a_whole_plan_run_imports_nothing_heavy(tmp_path: Path) -> None:
     argv = ["btplan", "plan", str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl"),
             "-o", str(tmp_path / "tree.json"), "--plan-out", str(plan_file)]
     modules = imported_by(
-        f"from btplan.cli import main\nsys.argv = {argv!r}\n"
+        f"from btplan.cli import main, lean\nlean.leave = sys.exit\nsys.argv = {argv!r}\n"
         "try:\n    main()\nexcept SystemExit as done:\n    assert done.code == 0, done.code")
     assert plan_file.read_text().startswith("(")  # it did plan
     assert "btplan.planner" in modules
@@ -100,7 +100,8 @@ import btplan
 compileall.compile_dir(btplan.__path__[0], quiet=1)  # as an installed package has it
 compiled = []
 sys.addaudithook(lambda event, args: event == "compile" and compiled.append(args[1]))
-from btplan.cli import main
+from btplan.cli import lean, main
+lean.leave = sys.exit  # raise SystemExit here rather than end the process
 sys.argv = {argv!r}
 try:
     main()
@@ -150,8 +151,9 @@ def noting_plan(*args, **kwargs):
     seen.append(("plan", gc.isenabled(), gc.get_threshold()[0]))
     return plan(*args, **kwargs)
 offline.load, offline.plan = noting_load, noting_plan
-from btplan.cli import main
+from btplan.cli import lean, main
 from btplan.cli.planning import plan_and_write
+lean.leave = sys.exit
 sys.argv = {argv!r}
 try:
     main()
