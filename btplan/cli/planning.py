@@ -116,7 +116,7 @@ def collecting() -> Iterator[None]:
 
     Left as it is when it is on (a library caller, a test): the process is theirs.
     On the competition problems the collections during planning took 3-7 ms of a small
-    problem and 75-110 ms of a second-long one with the default; 0-3 ms and 15-75 ms
+    problem and 50-110 ms of a longer one with the default; 0-3 ms and 14-76 ms
     with this threshold, the peak memory the same.
     """
     if gc.isenabled():
