@@ -109,20 +109,21 @@ def check_size(size: int, path: str) -> None:
 class Brackets:
     """What counts as nesting in one language: its brackets, and the text to skip.
 
-    `skip` matches strings and comments, whose brackets do not count.
+    `skip` is a regular expression for strings and comments, whose brackets do not
+    count; it is compiled when first used (a plan run reads one language of four).
     """
 
     opening: str
     closing: str
-    skip: re.Pattern[str] | None = None
+    skip: str | None = None
 
 
-BT_BRACKETS = Brackets("({", ")}", re.compile(r"#[^\n]*"))
-PDDL_BRACKETS = Brackets("(", ")", re.compile(r";[^\n]*"))
-TOML_BRACKETS = Brackets("[{", "]}", re.compile(
-    r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*'))
+BT_BRACKETS = Brackets("({", ")}", r"#[^\n]*")
+PDDL_BRACKETS = Brackets("(", ")", r";[^\n]*")
+TOML_BRACKETS = Brackets(
+    "[{", "]}", r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*')
 """TOML arrays and inline tables; strings of all four kinds and comments are skipped."""
-JSON_BRACKETS = Brackets("[{", "]}", re.compile(r'"(?:[^"\\]|\\.)*"'))
+JSON_BRACKETS = Brackets("[{", "]}", r'"(?:[^"\\]|\\.)*"')
 
 
 def check_nesting(text: str, path: str, brackets: Brackets,
@@ -133,7 +134,7 @@ def check_nesting(text: str, path: str, brackets: Brackets,
     (about a second for MAX_INPUT_BYTES of brackets on a slow machine). A closing bracket
     with no opening one is the parser's to report: it fails there, before any depth.
     """
-    body = brackets.skip.sub("", text) if brackets.skip else text
+    body = re.sub(brackets.skip, "", text) if brackets.skip else text
     marks = _marks(body, brackets)
     if max(accumulate(_steps(marks)), default=0) <= limit:
         return
@@ -159,7 +160,7 @@ def _steps(marks: bytes) -> Iterator[int]:
 def _index_of_bracket(text: str, brackets: Brackets, count: int) -> int:
     """Where in `text` the bracket number `count` (from 0, skipped text aside) is."""
     runs = f"[{re.escape(brackets.opening)}]+|[{re.escape(brackets.closing)}]+"
-    pattern = re.compile(f"{brackets.skip.pattern}|{runs}" if brackets.skip else runs)
+    pattern = re.compile(f"{brackets.skip}|{runs}" if brackets.skip else runs)
     seen = 0
     for match in pattern.finditer(text):
         run = match.group()

@@ -14,7 +14,6 @@ same tree gives the same ids on every run; they match the DOT export's node name
 
 from __future__ import annotations
 
-import json
 from collections import deque
 from collections.abc import Callable, Iterable, Mapping
 from typing import TYPE_CHECKING, Any, TextIO
@@ -69,6 +68,8 @@ class TickTrace:
         }
 
     def to_json(self) -> str:
+        import json  # here: a plan run records no traces and writes no JSON lines
+
         return json.dumps(self.to_dict(), separators=(",", ":"), ensure_ascii=False)
 
 

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import os
 import sys
-from contextvars import ContextVar
 
 from btplan.cli.console import LazyConsole, escape
 from btplan.errors import BtplanError, InputError, Interrupted, PlanningError
@@ -36,7 +35,25 @@ EXIT_CODES = {
 
 ISSUES = "https://github.com/btplan/btplan/issues"
 DEBUG_ENV = "BTPLAN_DEBUG"
-debug_flag: ContextVar[bool] = ContextVar("btplan_debug", default=False)
+
+
+class Flag:
+    """A switch with `get` and `set`, as a ContextVar has them (contextvars, a compiled
+    module, is not worth loading for one switch that each command run sets)."""
+
+    __slots__ = ("value",)
+
+    def __init__(self) -> None:
+        self.value = False
+
+    def get(self) -> bool:
+        return self.value
+
+    def set(self, value: bool) -> None:
+        self.value = value
+
+
+debug_flag = Flag()
 """Set by `--debug` for the command being run (the group callback sets it every time)."""
 
 stderr = LazyConsole(stderr=True)

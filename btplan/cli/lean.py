@@ -16,9 +16,8 @@ same outputs and exit codes.
 from __future__ import annotations
 
 import os
-import re
 import sys
-from typing import Any
+from typing import Any, NoReturn
 
 from btplan.cli.planning import FORMATS
 
@@ -30,8 +29,6 @@ _VALUED = {
 }
 _FLAGS = {"--paper": "paper", "--no-search": "no_search", "-q": "quiet", "--quiet": "quiet"}
 _INTEGERS = {"seed", "max_expansions", "max_ticks", "max_alternatives"}
-_INTEGER = re.compile(r"[0-9]{1,18}")
-_DECIMAL = re.compile(r"[0-9]{1,15}(\.[0-9]{0,6})?|\.[0-9]{1,6}")
 _COMPLETION = "_BTPLAN_COMPLETE"
 """click's shell-completion switch for the `btplan` program: the typer app handles it."""
 
@@ -41,14 +38,33 @@ def _word(value: str) -> bool:
     return value == "-" or (value != "" and not value.startswith("-"))
 
 
+def _digits(text: str, least: int, most: int) -> bool:
+    """`text` is `least` to `most` ASCII digits (no regular expression to compile)."""
+    return least <= len(text) <= most and (not text or (text.isascii() and text.isdigit()))
+
+
+def _integer(value: str) -> bool:
+    """A plain integer: `[0-9]{1,18}`."""
+    return _digits(value, 1, 18)
+
+
+def _decimal(value: str) -> bool:
+    r"""A plain decimal: `[0-9]{1,15}(\.[0-9]{0,6})?` or `\.[0-9]{1,6}`."""
+    whole, point, fraction = value.partition(".")
+    if not point:
+        return _digits(whole, 1, 15)
+    return _digits(whole, 1, 15) and _digits(fraction, 0, 6) if whole else _digits(
+        fraction, 1, 6)
+
+
 def _typed(name: str, value: str) -> Any:
     """The value as the typer command would pass it, or None to let typer decide."""
     if not _word(value):
         return None
     if name in _INTEGERS:
-        return int(value) if _INTEGER.fullmatch(value) else None
+        return int(value) if _integer(value) else None
     if name == "timeout":
-        return float(value) if _DECIMAL.fullmatch(value) else None
+        return float(value) if _decimal(value) else None
     if name == "fmt":
         return value if value in FORMATS else None
     return value
@@ -113,4 +129,19 @@ def main_fast() -> None:
     if args[:1] == ["plan"]:
         code = plan_fast(args[1:])
         if code is not None:
-            sys.exit(code)
+            leave(code)
+
+
+def leave(code: int) -> NoReturn:
+    """End the process with `code` once standard output and error are flushed, without
+    tearing the interpreter down: the outputs are written and closed by then, btplan
+    registers nothing to run at exit, and freeing every module and object one by one
+    took about 5 ms of CPU, a tenth of a small plan run. Should a flush fail (a closed
+    pipe), the interpreter exits as usual and reports it as it always did. Code that
+    calls `main` and wants it to raise SystemExit replaces this with `sys.exit`."""
+    try:
+        sys.stdout.flush()
+        sys.stderr.flush()
+    except (OSError, ValueError):
+        sys.exit(code)
+    os._exit(code)

@@ -12,15 +12,63 @@ from btplan.model import EQUALITY, Literal
 from btplan.records import record
 
 
-@record(frozen=True, slots=True)
 class Where:
-    """A place in a source text, with the text of its line for the caret display."""
+    """A place in a source text, with the text of its line for the caret display.
 
-    span: Span
-    line_text: str
+    The reader makes one for every token and nearly all of them are never looked at,
+    so a place keeps only its source and position, and its span and line text are made
+    when asked for (making them at once cost more than reading a small problem). It
+    compares, hashes and prints by those two, and cannot be changed, as a frozen
+    record.
+    """
+
+    __slots__ = ("column", "line", "source")
+    source: Source
+    line: int
+    column: int
+
+    def __init__(self, source: Source, line: int, column: int) -> None:
+        _set(self, "source", source)
+        _set(self, "line", line)
+        _set(self, "column", column)
+
+    @property
+    def span(self) -> Span:
+        return Span(self.source.path, self.line, self.column)
+
+    @property
+    def line_text(self) -> str:
+        lines = self.source.lines
+        return lines[self.line - 1] if 0 < self.line <= len(lines) else ""
 
     def error(self, message: str, hint: str | None = None) -> InputError:
         return InputError(message, self.span, hint, self.line_text)
+
+    def _key(self) -> tuple[Span, str]:
+        return self.span, self.line_text
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Where):
+            return NotImplemented
+        return self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def __repr__(self) -> str:
+        return f"Where(span={self.span!r}, line_text={self.line_text!r})"
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError(f"cannot assign to field {name!r}")
+
+    def __delattr__(self, name: str) -> None:
+        raise AttributeError(f"cannot delete field {name!r}")
+
+    def __reduce__(self) -> tuple[type[Where], tuple[Source, int, int]]:
+        return Where, (self.source, self.line, self.column)
+
+
+_set = object.__setattr__
 
 
 @record(frozen=True, slots=True)
@@ -127,8 +175,7 @@ class Source:
         self.lines = text.split("\n")
 
     def at(self, line: int, column: int) -> Where:
-        line_text = self.lines[line - 1] if 0 < line <= len(self.lines) else ""
-        return Where(Span(self.path, line, column), line_text)
+        return Where(self, line, column)
 
     def end(self) -> Where:
         """The last character of the text: where end-of-file errors point."""

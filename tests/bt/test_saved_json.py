@@ -7,11 +7,12 @@ import random
 
 import pytest
 from bt_stubs import ScriptWorld, every_kind_root, figure7_tree, random_root
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from btplan.bt import BehaviorTree
+from btplan.bt import Action, BehaviorTree, Condition, Sequence
 from btplan.bt.formats.saved import dump_json, json_schema, load_json, to_model
+from btplan.bt.formats.saved_out import tree_data
 from btplan.errors import InputError
 
 
@@ -74,3 +75,33 @@ def test_a_decorator_needs_one_child() -> None:
 def test_unknown_node_type_is_refused() -> None:
     with pytest.raises(InputError, match="root.type"):
         load_json('{"format": "btplan-tree", "version": 1, "root": {"type": "Selector"}}')
+
+
+def _reference(value: object, indent: str = "") -> str:
+    """The layout written with `json` alone: indented, short lists on one line."""
+    inner = indent + "  "
+    if isinstance(value, dict) and value:
+        items = [f"{inner}{json.dumps(k)}: {_reference(v, inner)}" for k, v in value.items()]
+        return "{\n" + ",\n".join(items) + "\n" + indent + "}"
+    if isinstance(value, list) and any(isinstance(v, (dict, list)) for v in value):
+        return "[\n" + ",\n".join(inner + _reference(v, inner) for v in value) + "\n" + indent + "]"
+    return json.dumps(value, ensure_ascii=False)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 10_000), st.lists(st.text(st.sampled_from('ab"\\\n\x00\x7f\u00e9\u2028 '),
+                                               min_size=1, max_size=6),
+                                       min_size=4, max_size=4))
+@example(0, ['a"b', "c\\d", "e\nf", "\u00e9\x7f"])
+def test_the_writer_lays_out_what_json_would(seed: int, words: list[str]) -> None:
+    """Names, idents and arguments with quotes, backslashes, control and non-ASCII
+    characters are escaped as `json` escapes them; statuses and every kind of node."""
+    ident, arg, port, name = words
+    root = Sequence([random_root(random.Random(seed)), Condition(ident, (arg, "b"), (port, "y")),
+                     Action(ident, (), None, name=name)], memory=True)
+    tree = BehaviorTree(root, name=name)
+    tree.tick(ScriptWorld(facts={("p", ("a",))}))
+    for with_status in (False, True):
+        text = dump_json(tree, with_status)
+        assert text == _reference(tree_data(tree, with_status)) + "\n"
+        assert json.loads(text) == tree_data(tree, with_status)

@@ -8,6 +8,7 @@ and every file written (read, then removed for the next run) must be the same.
 
 from __future__ import annotations
 
+import itertools
 import re
 import subprocess
 import sys
@@ -15,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from btplan.cli.lean import read_plan_arguments
+from btplan.cli.lean import _decimal, _integer, read_plan_arguments
 from btplan.lang.generators import generate
 
 SCRIPT = "from btplan.cli import main; import sys; sys.argv[0] = 'btplan'; main()"
@@ -84,3 +85,17 @@ def test_anything_else_is_left_to_typer(args: list[str]) -> None:
 def test_the_vectors_above_take_both_paths() -> None:
     lean = [read_plan_arguments(argv[1:]) is not None for argv in VECTORS]
     assert lean == [True] * 9 + [False] * 4
+
+
+def test_plain_numbers_are_what_the_patterns_accept() -> None:
+    """Integers `[0-9]{1,18}` and decimals `[0-9]{1,15}(\\.[0-9]{0,6})?|\\.[0-9]{1,6}`,
+    read without compiling those patterns: every short word of digits, points, signs,
+    letters and non-ASCII digits, and the lengths at the edges."""
+    integer = re.compile(r"[0-9]{1,18}")
+    decimal = re.compile(r"[0-9]{1,15}(\.[0-9]{0,6})?|\.[0-9]{1,6}")
+    words = ["".join(w) for k in range(5) for w in itertools.product("01.a-\u00b2\u0663 ", repeat=k)]
+    words += ["1" * 18, "1" * 19, "1" * 15 + ".123456", "1" * 16, ".123456", ".1234567",
+              "1.1234567", "1" * 15 + ".", "1" * 16 + ".5"]
+    for word in words:
+        assert (_integer(word), _decimal(word)) == (
+            bool(integer.fullmatch(word)), bool(decimal.fullmatch(word))), word

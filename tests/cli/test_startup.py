@@ -22,7 +22,8 @@ HEAVY = ("rich", "pydantic", "pybullet", "numpy", "matplotlib", "email", "import
          "dataclasses", "inspect", "tempfile", "difflib", "traceback", "importlib.resources",
          "random", "btplan.lang.writers", "btplan.planner.search", "btplan.planner.rescue",
          "btplan.planner.backjump", "btplan.planner.protect", "btplan.bt.debug",
-         "btplan.bt.parallel")
+         "btplan.bt.parallel", "btplan.bt.trace", "btplan.bt.blackboard", "json", "signal",
+         "contextvars")
 """Modules (and their submodules) that neither start-up nor `btplan plan` of well-formed
 PDDL needs (lark builds parsers: it reads .bt files and words PDDL syntax errors; typer
 builds the command line for help, errors and the other commands, cli/lean.py). The
@@ -30,15 +31,19 @@ standard library's share: dataclasses (and inspect beneath it) compile every cla
 methods at import, which btplan/records.py avoids; tempfile, difflib (for "did you
 mean"), traceback (for --debug) and importlib.resources (for shipped domains by name)
 serve only other paths, random only worlds that fail actions on purpose, and btplan's
-writers only messages about mistakes. Of the planner, the last-resort search and what
+writers only messages about mistakes; json is imported only for a string the tree
+writer cannot write unchanged (or a trace), and the signal handlers and the `--debug`
+switch do without `signal`'s enums and `contextvars`. Of the planner, the last-resort search and what
 turns its plan into a subtree (search, rescue), the blame of choices when planning stops
-(backjump), the `protect_goals` option (protect), `--debug`'s strict world and Parallel
-nodes are imported when first used."""
+(backjump), the `protect_goals` option (protect), `--debug`'s strict world, Parallel
+nodes, per-tick traces and the blackboard of BT.CPP trees are imported when first used."""
 
 REPORT = """
-import json, sys
+import sys
 {body}
-print(json.dumps(sorted(sys.modules)))
+modules = sorted(sys.modules)
+import json
+print(json.dumps(modules))
 """
 
 
@@ -74,11 +79,39 @@ def test_a_whole_plan_run_imports_nothing_heavy(tmp_path: Path) -> None:
     argv = ["btplan", "plan", str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl"),
             "-o", str(tmp_path / "tree.json"), "--plan-out", str(plan_file)]
     modules = imported_by(
-        f"from btplan.cli import main\nsys.argv = {argv!r}\n"
+        f"from btplan.cli import main, lean\nlean.leave = sys.exit\nsys.argv = {argv!r}\n"
         "try:\n    main()\nexcept SystemExit as done:\n    assert done.code == 0, done.code")
     assert plan_file.read_text().startswith("(")  # it did plan
     assert "btplan.planner" in modules
     assert heavy(modules) == []
+
+
+def test_a_whole_plan_run_compiles_no_source(tmp_path: Path) -> None:
+    """Byte code is loaded, never compiled: the first compile of a process costs several
+    milliseconds (named tuples and dataclasses compile source when a class is made)."""
+    domain_text, problem_text = generate("blocksworld", "pddl", seed=1, blocks=4)
+    (tmp_path / "d.pddl").write_text(domain_text)
+    (tmp_path / "p.pddl").write_text(problem_text)
+    argv = ["btplan", "plan", str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl"),
+            "-o", str(tmp_path / "tree.json"), "--plan-out", str(tmp_path / "plan.txt")]
+    script = f"""
+import compileall, sys
+import btplan
+compileall.compile_dir(btplan.__path__[0], quiet=1)  # as an installed package has it
+compiled = []
+sys.addaudithook(lambda event, args: event == "compile" and compiled.append(args[1]))
+from btplan.cli import lean, main
+lean.leave = sys.exit  # raise SystemExit here rather than end the process
+sys.argv = {argv!r}
+try:
+    main()
+except SystemExit as done:
+    assert done.code == 0, done.code
+print(compiled)
+"""
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=300, check=True)
+    assert done.stdout.splitlines()[-1] == "[]"
 
 
 def test_the_console_script_builds_only_the_command_it_runs() -> None:
@@ -95,3 +128,45 @@ def test_a_misspelt_command_is_still_named_by_the_whole_app() -> None:
     done = subprocess.run([sys.executable, "-m", "btplan", "plna", "x"], capture_output=True,
                           text=True, timeout=300)
     assert done.returncode == 2 and "No such command 'plna'" in done.stderr
+
+
+def test_the_collector_is_off_while_starting_and_on_while_planning(tmp_path: Path) -> None:
+    """Start-up and reading collect nothing (everything they make lives to the end), but
+    planning makes and drops objects: the collector must run then, and a library caller's
+    collector is left as it was."""
+    domain_text, problem_text = generate("blocksworld", "pddl", seed=1, blocks=3)
+    (tmp_path / "d.pddl").write_text(domain_text)
+    (tmp_path / "p.pddl").write_text(problem_text)
+    argv = ["btplan", "plan", str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl"),
+            "-o", str(tmp_path / "tree.json")]
+    script = f"""
+import gc, sys
+import btplan.acting.offline as offline
+seen = []
+load, plan = offline.load, offline.plan
+def noting_load(*args, **kwargs):
+    seen.append(("load", gc.isenabled()))
+    return load(*args, **kwargs)
+def noting_plan(*args, **kwargs):
+    seen.append(("plan", gc.isenabled(), gc.get_threshold()[0]))
+    return plan(*args, **kwargs)
+offline.load, offline.plan = noting_load, noting_plan
+from btplan.cli import lean, main
+from btplan.cli.planning import plan_and_write
+lean.leave = sys.exit
+sys.argv = {argv!r}
+try:
+    main()
+except SystemExit as done:
+    assert done.code == 0, done.code
+seen.append(("exit", gc.isenabled()))
+gc.set_threshold(700, 10, 10)
+gc.enable()
+plan_and_write(*sys.argv[2:4], out=sys.argv[5], quiet=True)
+print(seen)
+"""
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=300, check=True)
+    assert done.stdout.splitlines()[-1] == str(
+        [("load", False), ("plan", True, 10_000), ("exit", False),
+         ("load", True), ("plan", True, 700)])

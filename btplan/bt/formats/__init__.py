@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from btplan.bt.trace import last_statuses
 from btplan.bt.tree import BehaviorTree
 from btplan.errors import InputError
 
@@ -32,7 +31,11 @@ def dump(tree: BehaviorTree, fmt: str, with_status: bool = False) -> str:
         from btplan.bt.formats.btcpp import dump_xml
 
         return dump_xml(tree)
-    statuses = last_statuses(tree.root) if with_status else None
+    statuses = None
+    if with_status:
+        from btplan.bt.trace import last_statuses
+
+        statuses = last_statuses(tree.root)
     if fmt == "dot":
         from btplan.bt.formats.dot import dump_dot
 
