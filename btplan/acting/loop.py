@@ -16,6 +16,8 @@ from typing import TYPE_CHECKING
 
 from btplan.acting.ahead import later_false
 from btplan.acting.choice import achievers_for
+from btplan.acting.credit import credited_ahead
+from btplan.acting.prepare import give_up, insert_before_action, prepared
 from btplan.acting.diagnosis import failing_actions, loop_reason, most_expanded, no_achiever_reason
 from btplan.acting.early import expand_ahead, expand_broken
 from btplan.acting.progress import Circles
@@ -107,6 +109,7 @@ class BlendedLoop:
         look_ahead: bool = False,
         banned: frozenset[Choice] = frozenset(),
         scope_moves: bool = False,
+        goal_credit: bool = False,
     ) -> None:
         """`like`: an index of the same task to share models with; `look_ahead`: also
         expand, in the same tick, the later preconditions that are false (btplan.acting.ahead),
@@ -114,13 +117,18 @@ class BlendedLoop:
         (btplan.acting.watch);
         `banned`: (condition, action) choices never used (btplan.planner.backjump);
         `scope_moves`: skip a moved subtree while what it was moved for holds
-        (btplan.acting.scope)."""
+        (btplan.acting.scope); `goal_credit`: rank first achievers that make other goals
+        true, and expand their false preconditions at once (btplan.acting.credit)."""
         self.banned = banned
         self.culprits: list[Choice] = []
         """When planning stopped: the achiever choices to give up first (backjump.py)."""
         self.task = task
         self.look_ahead = look_ahead
         self.scope_moves = scope_moves
+        self.goal_credit = goal_credit
+        self.credited: LeafKey | None = None
+        self.optional: set[Node] = set()
+        """Conditions added before an achiever for another goal (btplan.acting.prepare)."""
         self.ahead: list[Node] = []
         self.world = world
         self.options = options or PlannerOptions()
@@ -229,6 +237,8 @@ class BlendedLoop:
                         f"{literal} was expanded {self._tally[literal]} times: the tree goes "
                         f"round (expanded most often: {self.most_expanded()})")
             achievers, spare = achievers_for(self, node, literal, state)
+            if node in self.optional and not achievers and give_up(node):
+                return self._expand()
             self.expanded.add(node)
             if not achievers:
                 self.dead.add(node)
@@ -237,7 +247,12 @@ class BlendedLoop:
                 continue
             if self.look_ahead:  # before ExpandTree moves the node under a Fallback
                 self.ahead = later_false(node, state, self.expanded)
-            return self.apply(node, literal, achievers, spare)
+            try:
+                return self.apply(node, literal, achievers, spare)
+            except UnresolvableConflictError:
+                if node not in self.optional or not give_up(node):
+                    raise
+                return self._expand()  # a prepared condition, given up (prepare.py)
         more = reexpand(self, state) if self.options.refine_more else None
         if more is not None:
             return more
@@ -293,6 +308,13 @@ class BlendedLoop:
             guarded = self._guards(batch, literal, state)
             subtree = expand_tree(self.tree, node, batch, self.task, guarded)
             self.never_expand(guard_nodes(subtree, guarded))
+            if self.goal_credit:  # set up what the first achiever enables (prepare.py)
+                extra = prepared(batch[0], literal, self.task.goal_literals, self.index.relaxed,
+                                 self.index.mutexes, state)
+                wanted, skips = insert_before_action(subtree, extra, self.task)
+                self.never_expand(skips)
+                self.optional.update(wanted)
+                self.ahead += wanted
             if self.options.protect_goals:
                 self._protect(subtree)
             before = lineage(subtree) if self.scope_moves else []
@@ -311,8 +333,12 @@ class BlendedLoop:
                 continue
             if resolution.moves and before:
                 self.never_expand(scope_moved(before, self.task))
+            if self.credited is not None and self.credited == batch[0].key:
+                self.ahead += credited_ahead(subtree, state, self.expanded)
             return self.record(literal, batch, len(resolution.conflicts), resolution.moves)
         assert first is not None
+        if node in self.optional:
+            raise first  # an extra: given up, not searched for (prepare.py)
         searched = search_stuck(self, node)
         if searched is not None:
             return searched

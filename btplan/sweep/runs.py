@@ -136,7 +136,8 @@ def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: s
         outcome = acting.run(task, agents=agents, world=world, seed=seed,
                              max_ticks=max_ticks, options=options, models=models,
                              look_ahead=method == "btplan" and job.sim == "symbolic",
-                             scope_moves=method == "btplan" and job.sim == "symbolic")
+                             scope_moves=method == "btplan" and job.sim == "symbolic",
+                             goal_credit=method == "btplan" and job.sim == "symbolic")
     finally:
         if hasattr(world, "close"):
             world.close()

@@ -1,0 +1,134 @@
+"""Before an achiever runs, set up the rest of a step of another goal that it enables.
+
+Backchaining achieves the goals one at a time, so work another goal shares with the
+one under way is done twice. In logistics, the truck that fetched one package drives
+back to the airport, and later drives out again for the package lying beside the first;
+in blocksworld, the block taken off to clear another is put on the table, because the
+block it must go onto is still covered, and is picked up again later. A plan does that
+work once: it loads both packages before driving back, and clears the target before
+taking the block off.
+
+Here, when an achiever `a` is chosen, the relaxed plan for the goals still false
+(h_add's cheapest producers, from the state of now) is asked for a step `b` that `a`
+makes possible: `a` adds a precondition of `b`. The other preconditions of `b` that are
+false now are added to `a`'s own preconditions, just before `a`, when each is one
+action away now (that action can run in the state of now), is not undone by `a`, and
+is not exclusive (h^2) with what `a` needs: loading the second package is one step
+away while the truck stands beside it, and clearing b5 while the hand is empty. The
+added conditions are expanded like any other; the step `b` itself is left to its goal.
+Off in the published algorithm.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+from btplan.bt import Composite, Fallback, Node
+from btplan.model import Atom, GroundAction, GroundLiteral, Task
+from btplan.planner.expand import condition_node
+from btplan.planner.heuristic import RelaxedModel
+from btplan.planner.mutex import Mutexes
+
+
+def relaxed_plan(relaxed: RelaxedModel, state: frozenset[Atom],
+                 goals: Sequence[Atom]) -> list[GroundAction]:
+    """The steps of a relaxed plan for `goals` from `state`: for each atom needed and
+    false, its cheapest producer by h_add (then by name), and that producer's
+    preconditions in turn."""
+    cost = relaxed.costs(state)
+    inf = math.inf
+    chosen: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
+    seen: set[Atom] = set()
+    todo = [g for g in goals if g not in state]
+    while todo:
+        atom = todo.pop()
+        if atom in seen or atom in state:
+            continue
+        seen.add(atom)
+        best: GroundAction | None = None
+        best_cost = inf
+        for producer in relaxed.producers(atom):
+            value = producer.cost + sum(cost.get(p.atom, inf) for p in producer.preconditions
+                                        if p.positive)
+            if value < best_cost or (value == best_cost and best is not None
+                                     and str(producer) < str(best)):
+                best, best_cost = producer, value
+        if best is None:
+            continue
+        chosen.setdefault(best.key, best)
+        todo.extend(p.atom for p in best.preconditions if p.positive)
+    return list(chosen.values())
+
+
+def prepared(action: GroundAction, condition: GroundLiteral,
+             goals: Sequence[GroundLiteral], relaxed: RelaxedModel, mutexes: Mutexes,
+             state: frozenset[Atom]) -> list[tuple[GroundLiteral, GroundAction]]:
+    """Conditions to achieve before `action`, for a step of another goal it enables,
+    each with the grounding that achieves it in one step from `state`."""
+    open_goals = [g.atom for g in goals if g.positive and not g.holds(state)]
+    if not open_goals or not action.add:
+        return []
+    needs = [p for p in action.preconditions if p.positive]
+    out: dict[GroundLiteral, GroundAction] = {}
+    for step in relaxed_plan(relaxed, state, open_goals):
+        if step.key == action.key:
+            continue
+        positive = [p for p in step.preconditions if p.positive]
+        if not any(p.atom in action.add and p.atom not in state for p in positive):
+            continue
+        for pre in positive:
+            if (pre.atom in state or pre.atom in action.add or pre in out
+                    or pre == condition or action.deletes(pre.atom)):
+                continue
+            if any(mutexes.exclusive(pre, need) for need in (*needs, condition)
+                   if need.positive):
+                continue
+            maker = _one_step(pre.atom, relaxed, state)
+            if maker is not None:
+                out[pre] = maker
+    return list(out.items())
+
+
+def _one_step(atom: Atom, relaxed: RelaxedModel, state: frozenset[Atom]
+              ) -> GroundAction | None:
+    """A grounding that adds `atom` and can run in `state` (positive preconditions)."""
+    for producer in relaxed.producers(atom):
+        if all(p.atom in state for p in producer.preconditions if p.positive):
+            return producer
+    return None
+
+
+def insert_before_action(subtree: Fallback,
+                         conditions: Sequence[tuple[GroundLiteral, GroundAction]],
+                         task: Task) -> tuple[list[Node], list[Node]]:
+    """Put each condition into the subtree's first alternative, just before its action,
+    as `Fallback(condition, not p1, ..., not pk)` with p1..pk the preconditions of the
+    one step that makes it: once that step cannot run (another agent took the package
+    away), the condition is passed over instead of pursued from farther. Returns the
+    conditions to expand and the guards, which are checked and never expanded."""
+    first = subtree.children[1] if len(subtree.children) > 1 else None
+    if not conditions or not isinstance(first, Composite) or not first.children:
+        return [], []
+    at = len(first.children) - 1
+    wanted: list[Node] = []
+    guards: list[Node] = []
+    for literal, maker in conditions:
+        node = condition_node(literal, task)
+        skip = [condition_node(GroundLiteral(p.atom, False), task)
+                for p in maker.preconditions if p.positive]
+        first.insert(at, Fallback([node, *skip]))
+        at += 1
+        wanted.append(node)
+        guards += skip
+    return wanted, guards
+
+
+def give_up(node: Node) -> bool:
+    """Take a prepared condition (its guarded Fallback) out of the tree, when it has no
+    achiever or no conflict-free place: it was an extra, never a need."""
+    holder = node.parent
+    if not isinstance(holder, Fallback) or not isinstance(holder.parent, Composite):
+        return False
+    holder.parent.remove(holder)
+    return True
