@@ -31,13 +31,9 @@ def achievers_for(loop: LoopState, node: Node, literal: GroundLiteral,
     # Rank every candidate, so that dropping dead ends still leaves `width` of them.
     achievers = index.achievers(literal, state, loop.world.refine, ALL)
     achievers = allowed(loop, _non_circular(loop, achievers, node, literal), literal)
-    loop.credited = None
-    if loop.goal_credit and achievers:  # goals their effects make true count (credit.py)
-        first = achievers[0]
+    if loop.goal_credit:  # the goals their effects make true count (credit.py)
         achievers = credit_goals(achievers, literal, loop.task.goal_literals,
                                  index.relaxed, state)
-        if achievers[0] is not first:
-            loop.credited = achievers[0].key
     kept = keep_reachable(achievers, needed_later(node), index.relaxed, state, width)
     chosen = {a.key for a in kept}  # keys: comparing whole actions is slow
     return kept, [a for a in achievers if a.key not in chosen]

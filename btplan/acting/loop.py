@@ -16,8 +16,7 @@ from typing import TYPE_CHECKING
 
 from btplan.acting.ahead import later_false
 from btplan.acting.choice import achievers_for
-from btplan.acting.credit import credited_ahead
-from btplan.acting.prepare import give_up, insert_before_action, prepared
+from btplan.acting.prepare import RelaxedPlans, give_up, insert_before_action, prepared
 from btplan.acting.diagnosis import failing_actions, loop_reason, most_expanded, no_achiever_reason
 from btplan.acting.early import expand_ahead, expand_broken
 from btplan.acting.progress import Circles
@@ -118,7 +117,8 @@ class BlendedLoop:
         `banned`: (condition, action) choices never used (btplan.planner.backjump);
         `scope_moves`: skip a moved subtree while what it was moved for holds
         (btplan.acting.scope); `goal_credit`: rank first achievers that make other goals
-        true, and expand their false preconditions at once (btplan.acting.credit)."""
+        true (btplan.acting.credit), and set up the step of another goal an achiever
+        enables (btplan.acting.prepare)."""
         self.banned = banned
         self.culprits: list[Choice] = []
         """When planning stopped: the achiever choices to give up first (backjump.py)."""
@@ -126,8 +126,8 @@ class BlendedLoop:
         self.look_ahead = look_ahead
         self.scope_moves = scope_moves
         self.goal_credit = goal_credit
-        self.credited: LeafKey | None = None
         self.optional: set[Node] = set()
+        self.plans: RelaxedPlans | None = None
         """Conditions added before an achiever for another goal (btplan.acting.prepare)."""
         self.ahead: list[Node] = []
         self.world = world
@@ -309,7 +309,8 @@ class BlendedLoop:
             subtree = expand_tree(self.tree, node, batch, self.task, guarded)
             self.never_expand(guard_nodes(subtree, guarded))
             if self.goal_credit:  # set up what the first achiever enables (prepare.py)
-                extra = prepared(batch[0], literal, self.task.goal_literals, self.index.relaxed,
+                self.plans = self.plans or RelaxedPlans(self.index.relaxed)
+                extra = prepared(batch[0], literal, self.task.goal_literals, self.plans,
                                  self.index.mutexes, state)
                 wanted, skips = insert_before_action(subtree, extra, self.task)
                 self.never_expand(skips)
@@ -333,8 +334,6 @@ class BlendedLoop:
                 continue
             if resolution.moves and before:
                 self.never_expand(scope_moved(before, self.task))
-            if self.credited is not None and self.credited == batch[0].key:
-                self.ahead += credited_ahead(subtree, state, self.expanded)
             return self.record(literal, batch, len(resolution.conflicts), resolution.moves)
         assert first is not None
         if node in self.optional:

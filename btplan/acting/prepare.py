@@ -31,6 +31,22 @@ from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
 
 
+class RelaxedPlans:
+    """The relaxed plan of the last state asked about: the expansions of one tick (up
+    to a dozen at the start of a run) share their state."""
+
+    def __init__(self, relaxed: RelaxedModel) -> None:
+        self.relaxed = relaxed
+        self._key: tuple[frozenset[Atom], tuple[Atom, ...]] | None = None
+        self._steps: list[GroundAction] = []
+
+    def steps(self, state: frozenset[Atom], goals: Sequence[Atom]) -> list[GroundAction]:
+        key = (state, tuple(goals))
+        if key != self._key:
+            self._key, self._steps = key, relaxed_plan(self.relaxed, state, goals)
+        return self._steps
+
+
 def relaxed_plan(relaxed: RelaxedModel, state: frozenset[Atom],
                  goals: Sequence[Atom]) -> list[GroundAction]:
     """The steps of a relaxed plan for `goals` from `state`: for each atom needed and
@@ -62,7 +78,7 @@ def relaxed_plan(relaxed: RelaxedModel, state: frozenset[Atom],
 
 
 def prepared(action: GroundAction, condition: GroundLiteral,
-             goals: Sequence[GroundLiteral], relaxed: RelaxedModel, mutexes: Mutexes,
+             goals: Sequence[GroundLiteral], plans: RelaxedPlans, mutexes: Mutexes,
              state: frozenset[Atom]) -> list[tuple[GroundLiteral, GroundAction]]:
     """Conditions to achieve before `action`, for a step of another goal it enables,
     each with the grounding that achieves it in one step from `state`."""
@@ -71,7 +87,8 @@ def prepared(action: GroundAction, condition: GroundLiteral,
         return []
     needs = [p for p in action.preconditions if p.positive]
     out: dict[GroundLiteral, GroundAction] = {}
-    for step in relaxed_plan(relaxed, state, open_goals):
+    relaxed = plans.relaxed
+    for step in plans.steps(state, open_goals):
         if step.key == action.key:
             continue
         positive = [p for p in step.preconditions if p.positive]

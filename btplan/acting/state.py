@@ -71,8 +71,6 @@ class LoopState(Protocol):
     ahead: list[Node]
     """Later false preconditions waiting to be expanded in this tick (btplan.acting.ahead)."""
     goal_credit: bool
-    credited: LeafKey | None
-    """The achiever the last look-up ranked first for the goals it makes true (credit.py)."""
     rescuer: Rescuer | None
     deadline: float | None
     searches: int
