@@ -16,9 +16,10 @@ from typing import TYPE_CHECKING
 
 from btplan.acting.ahead import later_false
 from btplan.acting.choice import achievers_for
-from btplan.acting.prepare import RelaxedPlans, give_up, insert_before_action, prepared
+from btplan.acting.prepare import give_up, prepare_before
 from btplan.acting.diagnosis import failing_actions, loop_reason, most_expanded, no_achiever_reason
 from btplan.acting.early import expand_ahead, expand_broken
+from btplan.acting.finish import FinishFirst
 from btplan.acting.progress import Circles
 from btplan.acting.regrow import reexpand
 from btplan.acting.scope import lineage, scope_moved
@@ -109,6 +110,7 @@ class BlendedLoop:
         banned: frozenset[Choice] = frozenset(),
         scope_moves: bool = False,
         goal_credit: bool = False,
+        finish_first: bool = False,
     ) -> None:
         """`like`: an index of the same task to share models with; `look_ahead`: also
         expand, in the same tick, the later preconditions that are false (btplan.acting.ahead),
@@ -118,7 +120,8 @@ class BlendedLoop:
         `scope_moves`: skip a moved subtree while what it was moved for holds
         (btplan.acting.scope); `goal_credit`: rank first achievers that make other goals
         true (btplan.acting.credit), and set up the step of another goal an achiever
-        enables (btplan.acting.prepare)."""
+        enables (btplan.acting.prepare); `finish_first`: finish a halted action that does
+        not interfere with the one started instead (btplan.acting.finish)."""
         self.banned = banned
         self.culprits: list[Choice] = []
         """When planning stopped: the achiever choices to give up first (backjump.py)."""
@@ -127,7 +130,6 @@ class BlendedLoop:
         self.scope_moves = scope_moves
         self.goal_credit = goal_credit
         self.optional: set[Node] = set()
-        self.plans: RelaxedPlans | None = None
         """Conditions added before an achiever for another goal (btplan.acting.prepare)."""
         self.ahead: list[Node] = []
         self.world = world
@@ -142,6 +144,7 @@ class BlendedLoop:
                                 extra)
         self.tree = initial_tree(task, order)
         self.grounding: dict[LeafKey, GroundAction] = {}
+        self.finishing = FinishFirst(world, self.grounding) if finish_first else None
         self.expansions: list[Expansion] = []
         self.ticks = 0
         self.expanded: set[Node] = set()
@@ -168,6 +171,8 @@ class BlendedLoop:
         """Keep the tree and continue against another world (a fresh run from the start)."""
         self.tree.halt(self.world)
         self.world = world
+        if self.finishing is not None:
+            self.finishing = FinishFirst(world, self.grounding)
         self._circles.forget()
         self._last_state = None
         self._stalls = 0
@@ -183,7 +188,7 @@ class BlendedLoop:
         if self.look_ahead and self._last_state is not None and before != self._last_state:
             expand_broken(self, report, self._last_state)
         while True:
-            status = report.status = self.tree.tick(self.world)
+            status = report.status = self.tree.tick(self.finishing or self.world)
             if status is not FAILURE:
                 self._stalls = 0
                 break
@@ -204,6 +209,8 @@ class BlendedLoop:
             else:
                 self._stall()
             break
+        if self.finishing is not None:
+            self.finishing.end_tick()
         after = self.world.facts()
         if self._circles.repeated(self.world, before, after, len(self.expansions)):
             executed = getattr(self.world, "executed", [])
@@ -308,14 +315,8 @@ class BlendedLoop:
             guarded = self._guards(batch, literal, state)
             subtree = expand_tree(self.tree, node, batch, self.task, guarded)
             self.never_expand(guard_nodes(subtree, guarded))
-            if self.goal_credit:  # set up what the first achiever enables (prepare.py)
-                self.plans = self.plans or RelaxedPlans(self.index.relaxed)
-                extra = prepared(batch[0], literal, self.task.goal_literals, self.plans,
-                                 self.index.mutexes, state)
-                wanted, skips = insert_before_action(subtree, extra, self.task)
-                self.never_expand(skips)
-                self.optional.update(wanted)
-                self.ahead += wanted
+            if self.goal_credit:  # set up what the first achiever enables
+                self.ahead += prepare_before(self, subtree, batch[0], literal, state)
             if self.options.protect_goals:
                 self._protect(subtree)
             before = lineage(subtree) if self.scope_moves else []

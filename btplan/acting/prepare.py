@@ -22,13 +22,21 @@ Off in the published algorithm.
 from __future__ import annotations
 
 import math
+import weakref
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from btplan.bt import Composite, Fallback, Node
 from btplan.model import Atom, GroundAction, GroundLiteral, Task
 from btplan.planner.expand import condition_node
 from btplan.planner.heuristic import RelaxedModel
+from btplan.planner.expand import pursued
 from btplan.planner.mutex import Mutexes
+
+if TYPE_CHECKING:
+    from btplan.acting.state import LoopState
+
+_PLANS: weakref.WeakKeyDictionary[RelaxedModel, RelaxedPlans] = weakref.WeakKeyDictionary()
 
 
 class RelaxedPlans:
@@ -45,6 +53,38 @@ class RelaxedPlans:
         if key != self._key:
             self._key, self._steps = key, relaxed_plan(self.relaxed, state, goals)
         return self._steps
+
+
+def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
+                   condition: GroundLiteral, state: frozenset[Atom]) -> list[Node]:
+    """Add the conditions `prepared` finds to the new subtree's first alternative; the
+    ones to expand. Not within a prepared condition's own subtree: preparing there
+    goes round (the truck's return prepares unloading the plane, whose unloading
+    prepares the truck's return)."""
+    if _within(subtree, loop.optional):
+        return []
+    relaxed = loop.index.relaxed
+    plans = _PLANS.get(relaxed)
+    if plans is None:
+        plans = _PLANS[relaxed] = RelaxedPlans(relaxed)
+    taken = pursued(subtree.children[0])
+    extra = [(c, m) for c, m in prepared(action, condition, loop.task.goal_literals, plans,
+                                         loop.index.mutexes, state) if c not in taken]
+    wanted, skips = insert_before_action(subtree, extra, loop.task)
+    loop.never_expand(skips)
+    loop.optional.update(wanted)
+    return wanted
+
+
+def _within(start: Node, optional: set[Node]) -> bool:
+    """Whether `start` is a prepared condition's subtree or lies inside one."""
+    node: Node | None = start
+    while node is not None:
+        if node in optional or (isinstance(node, Fallback) and node.children
+                                and node.children[0] in optional):
+            return True
+        node = node.parent
+    return False
 
 
 def relaxed_plan(relaxed: RelaxedModel, state: frozenset[Atom],

@@ -71,6 +71,8 @@ class LoopState(Protocol):
     ahead: list[Node]
     """Later false preconditions waiting to be expanded in this tick (btplan.acting.ahead)."""
     goal_credit: bool
+    optional: set[Node]
+    """Conditions added before an achiever for another goal's step (btplan.acting.prepare)."""
     rescuer: Rescuer | None
     deadline: float | None
     searches: int

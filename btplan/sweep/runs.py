@@ -137,7 +137,8 @@ def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: s
                              max_ticks=max_ticks, options=options, models=models,
                              look_ahead=method == "btplan" and job.sim == "symbolic",
                              scope_moves=method == "btplan" and job.sim == "symbolic",
-                             goal_credit=method == "btplan" and job.sim == "symbolic")
+                             goal_credit=method == "btplan" and job.sim == "symbolic",
+                             finish_first=method == "btplan" and job.sim == "symbolic")
     finally:
         if hasattr(world, "close"):
             world.close()
