@@ -21,6 +21,7 @@ from btplan.acting.diagnosis import failing_actions, loop_reason, most_expanded,
 from btplan.acting.early import expand_ahead, expand_broken
 from btplan.acting.finish import FinishFirst
 from btplan.acting.progress import Circles
+from btplan.acting.protect import protect
 from btplan.acting.regrow import reexpand
 from btplan.acting.scope import lineage, scope_moved
 from btplan.acting.searched import adopt_plan, search_stuck
@@ -28,9 +29,7 @@ from btplan.acting.state import Expansion, RunResult, TickReport
 from btplan.bt import (
     FAILURE,
     SUCCESS,
-    Action,
     BehaviorTree,
-    Composite,
     Fallback,
     LeafKey,
     Node,
@@ -55,7 +54,7 @@ from btplan.planner import (
 )
 from btplan.planner.achievers import guards
 from btplan.planner.agenda import goal_agenda, state_orders
-from btplan.planner.expand import condition_node, goal_check, guard_nodes
+from btplan.planner.expand import goal_check, guard_nodes
 from btplan.planner.lookahead import closest_first
 
 if TYPE_CHECKING:  # backjump (blame), protect (an option) and rescue: when first used
@@ -318,7 +317,7 @@ class BlendedLoop:
             if self.goal_credit:  # set up what the first achiever enables
                 self.ahead += prepare_before(self, subtree, batch[0], literal, state)
             if self.options.protect_goals:
-                self._protect(subtree)
+                protect(self, subtree)
             before = lineage(subtree) if self.scope_moves else []
             try:
                 resolution = resolve_conflicts(
@@ -360,22 +359,6 @@ class BlendedLoop:
     def adopt_plan(self, steps: list[GroundAction]) -> None:
         """Put a plan for the whole goal behind the goal tree (`plan_whole_goal`)."""
         adopt_plan(self, steps)
-
-    def _protect(self, subtree: Fallback) -> None:
-        """Check, before each new achiever, what keeps the other goals reachable."""
-        from btplan.planner.protect import white_knights  # an option, off by default
-
-        state = self.world.facts()
-        for alternative in subtree.children[1:]:
-            last = alternative.children[-1] if alternative.children else None
-            if not isinstance(last, Action) or last.key not in self.grounding:
-                continue
-            action = self.grounding[last.key]
-            for atom in white_knights(action, state, self.task.goal_literals,
-                                      self.index.relaxed):
-                guard = condition_node(GroundLiteral(atom, True), self.task)
-                assert isinstance(alternative, Composite)
-                alternative.insert(0, guard)
 
     def judge(self) -> Judge:
         mutexes = self.index.mutexes if self.options.mutexes else None
