@@ -40,19 +40,27 @@ _PLANS: weakref.WeakKeyDictionary[RelaxedModel, RelaxedPlans] = weakref.WeakKeyD
 
 
 class RelaxedPlans:
-    """The relaxed plan of the last state asked about: the expansions of one tick (up
-    to a dozen at the start of a run) share their state."""
+    """The relaxed plan of the last state asked about, its steps by the false atoms
+    they need: the expansions of one tick (up to a dozen at the start of a run) share
+    their state, and each asks only about the atoms its achiever adds."""
 
     def __init__(self, relaxed: RelaxedModel) -> None:
         self.relaxed = relaxed
         self._key: tuple[frozenset[Atom], tuple[Atom, ...]] | None = None
-        self._steps: list[GroundAction] = []
+        self._needing: dict[Atom, list[GroundAction]] = {}
 
-    def steps(self, state: frozenset[Atom], goals: Sequence[Atom]) -> list[GroundAction]:
+    def needing(self, state: frozenset[Atom], goals: Sequence[Atom]
+                ) -> dict[Atom, list[GroundAction]]:
+        """Atom -> the steps of the relaxed plan that need it and find it false."""
         key = (state, tuple(goals))
         if key != self._key:
-            self._key, self._steps = key, relaxed_plan(self.relaxed, state, goals)
-        return self._steps
+            needing: dict[Atom, list[GroundAction]] = {}
+            for step in relaxed_plan(self.relaxed, state, goals):
+                for p in step.preconditions:
+                    if p.positive and p.atom not in state:
+                        needing.setdefault(p.atom, []).append(step)
+            self._key, self._needing = key, needing
+        return self._needing
 
 
 def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
@@ -90,7 +98,7 @@ def _within(start: Node, optional: set[Node]) -> bool:
 def relaxed_plan(relaxed: RelaxedModel, state: frozenset[Atom],
                  goals: Sequence[Atom]) -> list[GroundAction]:
     """The steps of a relaxed plan for `goals` from `state`: for each atom needed and
-    false, its cheapest producer by h_add (then by name), and that producer's
+    false, its cheapest producer by h_add (the first on ties), and that producer's
     preconditions in turn."""
     cost = relaxed.costs(state)
     inf = math.inf
@@ -107,8 +115,7 @@ def relaxed_plan(relaxed: RelaxedModel, state: frozenset[Atom],
         for producer in relaxed.producers(atom):
             value = producer.cost + sum(cost.get(p.atom, inf) for p in producer.preconditions
                                         if p.positive)
-            if value < best_cost or (value == best_cost and best is not None
-                                     and str(producer) < str(best)):
+            if value < best_cost:  # ties: the first, in the model's fixed order
                 best, best_cost = producer, value
         if best is None:
             continue
@@ -125,16 +132,18 @@ def prepared(action: GroundAction, condition: GroundLiteral,
     open_goals = [g.atom for g in goals if g.positive and not g.holds(state)]
     if not open_goals or not action.add:
         return []
+    needing = plans.needing(state, open_goals)
+    enabled = {step.key: step for atom in action.add for step in needing.get(atom, ())
+               if step.key != action.key}
+    if not enabled:
+        return []
     needs = [p for p in action.preconditions if p.positive]
     out: dict[GroundLiteral, GroundAction] = {}
     relaxed = plans.relaxed
-    for step in plans.steps(state, open_goals):
-        if step.key == action.key:
-            continue
-        positive = [p for p in step.preconditions if p.positive]
-        if not any(p.atom in action.add and p.atom not in state for p in positive):
-            continue
-        for pre in positive:
+    for step in enabled.values():
+        for pre in step.preconditions:
+            if not pre.positive:
+                continue
             if (pre.atom in state or pre.atom in action.add or pre in out
                     or pre == condition or action.deletes(pre.atom)):
                 continue
