@@ -78,7 +78,7 @@ def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
     taken = pursued(subtree.children[0])
     extra = [(c, m) for c, m in prepared(action, condition, loop.task.goal_literals, plans,
                                          loop.index.mutexes, state) if c not in taken]
-    wanted, skips = insert_before_action(subtree, extra, loop.task)
+    wanted, skips = insert_before_action(subtree, extra, loop.task, action)
     loop.never_expand(skips)
     loop.optional.update(wanted)
     return wanted
@@ -112,11 +112,14 @@ def relaxed_plan(relaxed: RelaxedModel, state: frozenset[Atom],
         seen.add(atom)
         best: GroundAction | None = None
         best_cost = inf
+        floor = cost.get(atom, inf)  # h_add's own value: no producer does better
         for producer in relaxed.producers(atom):
             value = producer.cost + sum(cost.get(p.atom, inf) for p in producer.preconditions
                                         if p.positive)
             if value < best_cost:  # ties: the first, in the model's fixed order
                 best, best_cost = producer, value
+                if value <= floor:
+                    break
         if best is None:
             continue
         chosen.setdefault(best.key, best)
@@ -167,22 +170,25 @@ def _one_step(atom: Atom, relaxed: RelaxedModel, state: frozenset[Atom]
 
 def insert_before_action(subtree: Fallback,
                          conditions: Sequence[tuple[GroundLiteral, GroundAction]],
-                         task: Task) -> tuple[list[Node], list[Node]]:
+                         task: Task, action: GroundAction | None = None,
+                         ) -> tuple[list[Node], list[Node]]:
     """Put each condition into the subtree's first alternative, just before its action,
     as `Fallback(condition, not p1, ..., not pk)` with p1..pk the preconditions of the
     one step that makes it: once that step cannot run (another agent took the package
-    away), the condition is passed over instead of pursued from farther. Returns the
-    conditions to expand and the guards, which are checked and never expanded."""
+    away), the condition is passed over instead of pursued from farther. Preconditions
+    it shares with `action` need no guard: the alternative checks them first. Returns
+    the conditions to expand and the guards, which are checked and never expanded."""
     first = subtree.children[1] if len(subtree.children) > 1 else None
     if not conditions or not isinstance(first, Composite) or not first.children:
         return [], []
     at = len(first.children) - 1
+    shared = set(action.preconditions) if action is not None else set()
     wanted: list[Node] = []
     guards: list[Node] = []
     for literal, maker in conditions:
         node = condition_node(literal, task)
         skip = [condition_node(GroundLiteral(p.atom, False), task)
-                for p in maker.preconditions if p.positive]
+                for p in maker.preconditions if p.positive and p not in shared]
         first.insert(at, Fallback([node, *skip]))
         at += 1
         wanted.append(node)

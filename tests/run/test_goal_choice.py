@@ -136,13 +136,13 @@ def test_a_prepared_condition_is_guarded_and_given_up_whole(tmp_path: Path) -> N
     maker = next(a for a in index.achievers(clear_b5, state, None, 8)
                  if str(a) == "unstack(b2, b5)")
     subtree = atomic_bt(condition_node(clear_b3, task), [unstack], task)
-    wanted, guards = insert_before_action(subtree, [(clear_b5, maker)], task)
+    wanted, guards = insert_before_action(subtree, [(clear_b5, maker)], task, unstack)
     alternative = subtree.children[1]
     assert isinstance(alternative, Sequence)
     assert isinstance(alternative.children[-1], Action)  # still last
     holder = alternative.children[-2]
     assert isinstance(holder, Fallback) and holder.children[0] is wanted[0]
-    assert len(guards) == 3  # not on(b2, b5), not clear(b2), not hand_empty
+    assert len(guards) == 2  # not on(b2, b5), not clear(b2); hand_empty is checked before
     assert not give_up(alternative.children[0])  # a precondition of its own: kept
     assert give_up(wanted[0])
     assert holder not in alternative.children and len(alternative.children) == 4
