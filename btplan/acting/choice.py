@@ -2,11 +2,13 @@
 
 The planner ranks the candidates (btplan.planner.achievers) and judges reachability
 (btplan.planner.lookahead); what depends on the run is here: the choices an earlier
-attempt banned, and the conditions the enclosing Fallbacks already pursue.
+attempt banned, and the conditions the enclosing Fallbacks already pursue; with
+`goal_credit`, the goals an achiever's effects make true (btplan.acting.credit).
 """
 
 from __future__ import annotations
 
+from btplan.acting.credit import credit_goals
 from btplan.acting.state import LoopState
 from btplan.bt import Node
 from btplan.model import Atom, GroundAction, GroundLiteral
@@ -29,6 +31,9 @@ def achievers_for(loop: LoopState, node: Node, literal: GroundLiteral,
     # Rank every candidate, so that dropping dead ends still leaves `width` of them.
     achievers = index.achievers(literal, state, loop.world.refine, ALL)
     achievers = allowed(loop, _non_circular(loop, achievers, node, literal), literal)
+    if loop.goal_credit:  # the goals their effects make true count (credit.py)
+        achievers = credit_goals(achievers, literal, loop.task.goal_literals,
+                                 index.relaxed, state)
     kept = keep_reachable(achievers, needed_later(node), index.relaxed, state, width)
     chosen = {a.key for a in kept}  # keys: comparing whole actions is slow
     return kept, [a for a in achievers if a.key not in chosen]

@@ -24,11 +24,13 @@ from btplan.planner import literal_of
 
 def expand_ahead(loop: LoopState, report: TickReport) -> None:
     """Expand the false preconditions after the one just expanded (`loop.ahead`), as the
-    tick would once the robot had achieved that one."""
-    pending, loop.ahead = loop.ahead, []
+    tick would once the robot had achieved that one; and those an expansion here adds
+    (a credited achiever's, btplan.acting.credit)."""
     state = loop.world.facts()
-    for node in pending:
+    while loop.ahead:
+        node = loop.ahead.pop(0)
         if not _room(loop, report):
+            loop.ahead = []
             return
         literal = literal_of(node)
         if literal is None or literal.holds(state):
@@ -52,7 +54,7 @@ def expand_broken(loop: LoopState, report: TickReport, last: frozenset[Atom]) ->
                 return
             ahead = later_false(node, state, loop.expanded)
             if _expand_early(loop, report, node, state):
-                loop.ahead = ahead
+                loop.ahead = ahead + loop.ahead
                 expand_ahead(loop, report)
     finally:
         report.planning_seconds += time.process_time() - started

@@ -16,9 +16,12 @@ from typing import TYPE_CHECKING
 
 from btplan.acting.ahead import later_false
 from btplan.acting.choice import achievers_for
+from btplan.acting.prepare import give_up, prepare_before
 from btplan.acting.diagnosis import failing_actions, loop_reason, most_expanded, no_achiever_reason
 from btplan.acting.early import expand_ahead, expand_broken
+from btplan.acting.finish import FinishFirst
 from btplan.acting.progress import Circles
+from btplan.acting.protect import protect
 from btplan.acting.regrow import reexpand
 from btplan.acting.scope import lineage, scope_moved
 from btplan.acting.searched import adopt_plan, search_stuck
@@ -26,9 +29,7 @@ from btplan.acting.state import Expansion, RunResult, TickReport
 from btplan.bt import (
     FAILURE,
     SUCCESS,
-    Action,
     BehaviorTree,
-    Composite,
     Fallback,
     LeafKey,
     Node,
@@ -53,7 +54,7 @@ from btplan.planner import (
 )
 from btplan.planner.achievers import guards
 from btplan.planner.agenda import goal_agenda, state_orders
-from btplan.planner.expand import condition_node, goal_check, guard_nodes
+from btplan.planner.expand import goal_check, guard_nodes
 from btplan.planner.lookahead import closest_first
 
 if TYPE_CHECKING:  # backjump (blame), protect (an option) and rescue: when first used
@@ -107,6 +108,8 @@ class BlendedLoop:
         look_ahead: bool = False,
         banned: frozenset[Choice] = frozenset(),
         scope_moves: bool = False,
+        goal_credit: bool = False,
+        finish_first: bool = False,
     ) -> None:
         """`like`: an index of the same task to share models with; `look_ahead`: also
         expand, in the same tick, the later preconditions that are false (btplan.acting.ahead),
@@ -114,13 +117,19 @@ class BlendedLoop:
         (btplan.acting.watch);
         `banned`: (condition, action) choices never used (btplan.planner.backjump);
         `scope_moves`: skip a moved subtree while what it was moved for holds
-        (btplan.acting.scope)."""
+        (btplan.acting.scope); `goal_credit`: rank first achievers that make other goals
+        true (btplan.acting.credit), and set up the step of another goal an achiever
+        enables (btplan.acting.prepare); `finish_first`: finish a halted action that does
+        not interfere with the one started instead (btplan.acting.finish)."""
         self.banned = banned
         self.culprits: list[Choice] = []
         """When planning stopped: the achiever choices to give up first (backjump.py)."""
         self.task = task
         self.look_ahead = look_ahead
         self.scope_moves = scope_moves
+        self.goal_credit = goal_credit
+        self.optional: set[Node] = set()
+        """Conditions added before an achiever for another goal (btplan.acting.prepare)."""
         self.ahead: list[Node] = []
         self.world = world
         self.options = options or PlannerOptions()
@@ -134,6 +143,7 @@ class BlendedLoop:
                                 extra)
         self.tree = initial_tree(task, order)
         self.grounding: dict[LeafKey, GroundAction] = {}
+        self.finishing = FinishFirst(world, self.grounding) if finish_first else None
         self.expansions: list[Expansion] = []
         self.ticks = 0
         self.expanded: set[Node] = set()
@@ -160,6 +170,8 @@ class BlendedLoop:
         """Keep the tree and continue against another world (a fresh run from the start)."""
         self.tree.halt(self.world)
         self.world = world
+        if self.finishing is not None:
+            self.finishing = FinishFirst(world, self.grounding)
         self._circles.forget()
         self._last_state = None
         self._stalls = 0
@@ -175,7 +187,7 @@ class BlendedLoop:
         if self.look_ahead and self._last_state is not None and before != self._last_state:
             expand_broken(self, report, self._last_state)
         while True:
-            status = report.status = self.tree.tick(self.world)
+            status = report.status = self.tree.tick(self.finishing or self.world)
             if status is not FAILURE:
                 self._stalls = 0
                 break
@@ -196,6 +208,8 @@ class BlendedLoop:
             else:
                 self._stall()
             break
+        if self.finishing is not None:
+            self.finishing.end_tick()
         after = self.world.facts()
         if self._circles.repeated(self.world, before, after, len(self.expansions)):
             executed = getattr(self.world, "executed", [])
@@ -229,6 +243,8 @@ class BlendedLoop:
                         f"{literal} was expanded {self._tally[literal]} times: the tree goes "
                         f"round (expanded most often: {self.most_expanded()})")
             achievers, spare = achievers_for(self, node, literal, state)
+            if node in self.optional and not achievers and give_up(node):
+                return self._expand()
             self.expanded.add(node)
             if not achievers:
                 self.dead.add(node)
@@ -237,7 +253,12 @@ class BlendedLoop:
                 continue
             if self.look_ahead:  # before ExpandTree moves the node under a Fallback
                 self.ahead = later_false(node, state, self.expanded)
-            return self.apply(node, literal, achievers, spare)
+            try:
+                return self.apply(node, literal, achievers, spare)
+            except UnresolvableConflictError:
+                if node not in self.optional or not give_up(node):
+                    raise
+                return self._expand()  # a prepared condition, given up (prepare.py)
         more = reexpand(self, state) if self.options.refine_more else None
         if more is not None:
             return more
@@ -293,8 +314,10 @@ class BlendedLoop:
             guarded = self._guards(batch, literal, state)
             subtree = expand_tree(self.tree, node, batch, self.task, guarded)
             self.never_expand(guard_nodes(subtree, guarded))
+            if self.goal_credit:  # set up what the first achiever enables
+                self.ahead += prepare_before(self, subtree, batch[0], literal, state)
             if self.options.protect_goals:
-                self._protect(subtree)
+                protect(self, subtree)
             before = lineage(subtree) if self.scope_moves else []
             try:
                 resolution = resolve_conflicts(
@@ -313,6 +336,8 @@ class BlendedLoop:
                 self.never_expand(scope_moved(before, self.task))
             return self.record(literal, batch, len(resolution.conflicts), resolution.moves)
         assert first is not None
+        if node in self.optional:
+            raise first  # an extra: given up, not searched for (prepare.py)
         searched = search_stuck(self, node)
         if searched is not None:
             return searched
@@ -334,22 +359,6 @@ class BlendedLoop:
     def adopt_plan(self, steps: list[GroundAction]) -> None:
         """Put a plan for the whole goal behind the goal tree (`plan_whole_goal`)."""
         adopt_plan(self, steps)
-
-    def _protect(self, subtree: Fallback) -> None:
-        """Check, before each new achiever, what keeps the other goals reachable."""
-        from btplan.planner.protect import white_knights  # an option, off by default
-
-        state = self.world.facts()
-        for alternative in subtree.children[1:]:
-            last = alternative.children[-1] if alternative.children else None
-            if not isinstance(last, Action) or last.key not in self.grounding:
-                continue
-            action = self.grounding[last.key]
-            for atom in white_knights(action, state, self.task.goal_literals,
-                                      self.index.relaxed):
-                guard = condition_node(GroundLiteral(atom, True), self.task)
-                assert isinstance(alternative, Composite)
-                alternative.insert(0, guard)
 
     def judge(self) -> Judge:
         mutexes = self.index.mutexes if self.options.mutexes else None

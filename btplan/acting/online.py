@@ -179,6 +179,8 @@ def run_task(
     look_ahead: bool = False,
     models: AchieverIndex | None = None,
     scope_moves: bool = False,
+    goal_credit: bool = False,
+    finish_first: bool = False,
 ) -> RunOutcome:
     """Plan and act at once (Algorithm 1) in `world`, with `agents` acting before each tick.
 
@@ -190,7 +192,8 @@ def run_task(
     if world is None:
         world = SymbolicWorld(task, seed=seed, failure_probability=failure_probability)
     loop = BlendedLoop(task, world, options or ACTING_OPTIONS, like=models,
-                       look_ahead=look_ahead, scope_moves=scope_moves)
+                       look_ahead=look_ahead, scope_moves=scope_moves,
+                       goal_credit=goal_credit, finish_first=finish_first)
     observer = _Observer(world, agents, loop.tree, view, rate, stop)
     interrupted = False
     halted_on_stop: tuple[str, ...] = ()
@@ -232,6 +235,8 @@ def run(
     look_ahead: bool = False,
     models: AchieverIndex | None = None,
     scope_moves: bool = False,
+    goal_credit: bool = False,
+    finish_first: bool = False,
 ) -> RunOutcome:
     """Run `task` in a world with disturbances: the library form of `btplan run`.
 
@@ -246,7 +251,10 @@ def run(
     condition ahead of the running action as soon as an agent breaks it
     (btplan.acting.watch); `scope_moves`
     skips a subtree moved out of an achiever while that achiever's condition holds
-    (btplan.acting.scope); `models`
+    (btplan.acting.scope); `goal_credit` ranks first the achievers that make other
+    goals true and sets up the step of another goal an achiever enables
+    (btplan.acting.credit, btplan.acting.prepare); `finish_first` finishes a halted
+    action that does not interfere with the one started instead (btplan.acting.finish); `models`
     are the task's models built beforehand (`task_models`), so that their cost can
     be told apart from the expansions'.
     """
@@ -258,4 +266,5 @@ def run(
     return run_task(task, world=world, agents=everyone, seed=seed, max_ticks=max_ticks,
                     view=view, rate=rate, failure_probability=failure_probability,
                     options=options, stop=stop, look_ahead=look_ahead, models=models,
-                    scope_moves=scope_moves)
+                    scope_moves=scope_moves, goal_credit=goal_credit,
+                    finish_first=finish_first)

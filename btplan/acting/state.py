@@ -2,8 +2,11 @@
 
 The loop (btplan.acting.loop) is split by responsibility: choosing achievers
 (`choice`), expanding before a tick reaches a condition (`early`), re-expanding
-(`regrow`), the last-resort search (`searched`), the messages (`diagnosis`). Those parts
-see the loop through `LoopState`, so that none of them imports the loop itself.
+(`regrow`), the last-resort search (`searched`), the messages (`diagnosis`); with the
+other goals in view, ranking (`credit`) and setting up another goal's step (`prepare`);
+finishing a halted action first (`finish`); the `protect_goals` guards (`protect`).
+Those parts see the loop through `LoopState`, so that none of them imports the loop
+itself.
 """
 
 from __future__ import annotations
@@ -70,6 +73,9 @@ class LoopState(Protocol):
     banned: frozenset[Choice]
     ahead: list[Node]
     """Later false preconditions waiting to be expanded in this tick (btplan.acting.ahead)."""
+    goal_credit: bool
+    optional: set[Node]
+    """Conditions added before an achiever for another goal's step (btplan.acting.prepare)."""
     rescuer: Rescuer | None
     deadline: float | None
     searches: int

@@ -1,0 +1,206 @@
+"""Before an achiever runs, set up the rest of a step of another goal that it enables.
+
+Backchaining achieves the goals one at a time, so work another goal shares with the
+one under way is done twice. In logistics, the truck that fetched one package drives
+back to the airport, and later drives out again for the package lying beside the first;
+in blocksworld, the block taken off to clear another is put on the table, because the
+block it must go onto is still covered, and is picked up again later. A plan does that
+work once: it loads both packages before driving back, and clears the target before
+taking the block off.
+
+Here, when an achiever `a` is chosen, the relaxed plan for the goals still false
+(h_add's cheapest producers, from the state of now) is asked for a step `b` that `a`
+makes possible: `a` adds a precondition of `b`. The other preconditions of `b` that are
+false now are added to `a`'s own preconditions, just before `a`, when each is one
+action away now (that action can run in the state of now), is not undone by `a`, and
+is not exclusive (h^2) with what `a` needs: loading the second package is one step
+away while the truck stands beside it, and clearing b5 while the hand is empty. The
+added conditions are expanded like any other; the step `b` itself is left to its goal.
+Off in the published algorithm.
+"""
+
+from __future__ import annotations
+
+import math
+import weakref
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+from btplan.bt import Composite, Fallback, Node
+from btplan.model import Atom, GroundAction, GroundLiteral, Task
+from btplan.planner.expand import condition_node
+from btplan.planner.heuristic import RelaxedModel
+from btplan.planner.expand import pursued
+from btplan.planner.mutex import Mutexes
+
+if TYPE_CHECKING:
+    from btplan.acting.state import LoopState
+
+_PLANS: weakref.WeakKeyDictionary[RelaxedModel, RelaxedPlans] = weakref.WeakKeyDictionary()
+
+
+class RelaxedPlans:
+    """The relaxed plan of the last state asked about, its steps by the false atoms
+    they need: the expansions of one tick (up to a dozen at the start of a run) share
+    their state, and each asks only about the atoms its achiever adds."""
+
+    def __init__(self, relaxed: RelaxedModel) -> None:
+        self.relaxed = relaxed
+        self._key: tuple[frozenset[Atom], tuple[Atom, ...]] | None = None
+        self._needing: dict[Atom, list[GroundAction]] = {}
+
+    def needing(self, state: frozenset[Atom], goals: Sequence[Atom]
+                ) -> dict[Atom, list[GroundAction]]:
+        """Atom -> the steps of the relaxed plan that need it and find it false."""
+        key = (state, tuple(goals))
+        if key != self._key:
+            needing: dict[Atom, list[GroundAction]] = {}
+            for step in relaxed_plan(self.relaxed, state, goals):
+                for p in step.preconditions:
+                    if p.positive and p.atom not in state:
+                        needing.setdefault(p.atom, []).append(step)
+            self._key, self._needing = key, needing
+        return self._needing
+
+
+def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
+                   condition: GroundLiteral, state: frozenset[Atom]) -> list[Node]:
+    """Add the conditions `prepared` finds to the new subtree's first alternative; the
+    ones to expand. Not within a prepared condition's own subtree: preparing there
+    goes round (the truck's return prepares unloading the plane, whose unloading
+    prepares the truck's return)."""
+    if _within(subtree, loop.optional):
+        return []
+    relaxed = loop.index.relaxed
+    plans = _PLANS.get(relaxed)
+    if plans is None:
+        plans = _PLANS[relaxed] = RelaxedPlans(relaxed)
+    taken = pursued(subtree.children[0])
+    extra = [(c, m) for c, m in prepared(action, condition, loop.task.goal_literals, plans,
+                                         loop.index.mutexes, state) if c not in taken]
+    wanted, skips = insert_before_action(subtree, extra, loop.task, action)
+    loop.never_expand(skips)
+    loop.optional.update(wanted)
+    return wanted
+
+
+def _within(start: Node, optional: set[Node]) -> bool:
+    """Whether `start` is a prepared condition's subtree or lies inside one."""
+    node: Node | None = start
+    while node is not None:
+        if node in optional or (isinstance(node, Fallback) and node.children
+                                and node.children[0] in optional):
+            return True
+        node = node.parent
+    return False
+
+
+def relaxed_plan(relaxed: RelaxedModel, state: frozenset[Atom],
+                 goals: Sequence[Atom]) -> list[GroundAction]:
+    """The steps of a relaxed plan for `goals` from `state`: for each atom needed and
+    false, its cheapest producer by h_add (the first on ties), and that producer's
+    preconditions in turn."""
+    cost = relaxed.costs(state)
+    inf = math.inf
+    chosen: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
+    seen: set[Atom] = set()
+    todo = [g for g in goals if g not in state]
+    while todo:
+        atom = todo.pop()
+        if atom in seen or atom in state:
+            continue
+        seen.add(atom)
+        best: GroundAction | None = None
+        best_cost = inf
+        floor = cost.get(atom, inf)  # h_add's own value: no producer does better
+        for producer in relaxed.producers(atom):
+            value = producer.cost + sum(cost.get(p.atom, inf) for p in producer.preconditions
+                                        if p.positive)
+            if value < best_cost:  # ties: the first, in the model's fixed order
+                best, best_cost = producer, value
+                if value <= floor:
+                    break
+        if best is None:
+            continue
+        chosen.setdefault(best.key, best)
+        todo.extend(p.atom for p in best.preconditions if p.positive)
+    return list(chosen.values())
+
+
+def prepared(action: GroundAction, condition: GroundLiteral,
+             goals: Sequence[GroundLiteral], plans: RelaxedPlans, mutexes: Mutexes,
+             state: frozenset[Atom]) -> list[tuple[GroundLiteral, GroundAction]]:
+    """Conditions to achieve before `action`, for a step of another goal it enables,
+    each with the grounding that achieves it in one step from `state`."""
+    open_goals = [g.atom for g in goals if g.positive and not g.holds(state)]
+    if not open_goals or not action.add:
+        return []
+    needing = plans.needing(state, open_goals)
+    enabled = {step.key: step for atom in action.add for step in needing.get(atom, ())
+               if step.key != action.key}
+    if not enabled:
+        return []
+    needs = [p for p in action.preconditions if p.positive]
+    out: dict[GroundLiteral, GroundAction] = {}
+    relaxed = plans.relaxed
+    for step in enabled.values():
+        for pre in step.preconditions:
+            if not pre.positive:
+                continue
+            if (pre.atom in state or pre.atom in action.add or pre in out
+                    or pre == condition or action.deletes(pre.atom)):
+                continue
+            if any(mutexes.exclusive(pre, need) for need in (*needs, condition)
+                   if need.positive):
+                continue
+            maker = _one_step(pre.atom, relaxed, state)
+            if maker is not None:
+                out[pre] = maker
+    return list(out.items())
+
+
+def _one_step(atom: Atom, relaxed: RelaxedModel, state: frozenset[Atom]
+              ) -> GroundAction | None:
+    """A grounding that adds `atom` and can run in `state` (positive preconditions)."""
+    for producer in relaxed.producers(atom):
+        if all(p.atom in state for p in producer.preconditions if p.positive):
+            return producer
+    return None
+
+
+def insert_before_action(subtree: Fallback,
+                         conditions: Sequence[tuple[GroundLiteral, GroundAction]],
+                         task: Task, action: GroundAction | None = None,
+                         ) -> tuple[list[Node], list[Node]]:
+    """Put each condition into the subtree's first alternative, just before its action,
+    as `Fallback(condition, not p1, ..., not pk)` with p1..pk the preconditions of the
+    one step that makes it: once that step cannot run (another agent took the package
+    away), the condition is passed over instead of pursued from farther. Preconditions
+    it shares with `action` need no guard: the alternative checks them first. Returns
+    the conditions to expand and the guards, which are checked and never expanded."""
+    first = subtree.children[1] if len(subtree.children) > 1 else None
+    if not conditions or not isinstance(first, Composite) or not first.children:
+        return [], []
+    at = len(first.children) - 1
+    shared = set(action.preconditions) if action is not None else set()
+    wanted: list[Node] = []
+    guards: list[Node] = []
+    for literal, maker in conditions:
+        node = condition_node(literal, task)
+        skip = [condition_node(GroundLiteral(p.atom, False), task)
+                for p in maker.preconditions if p.positive and p not in shared]
+        first.insert(at, Fallback([node, *skip]))
+        at += 1
+        wanted.append(node)
+        guards += skip
+    return wanted, guards
+
+
+def give_up(node: Node) -> bool:
+    """Take a prepared condition (its guarded Fallback) out of the tree, when it has no
+    achiever or no conflict-free place: it was an extra, never a need."""
+    holder = node.parent
+    if not isinstance(holder, Fallback) or not isinstance(holder.parent, Composite):
+        return False
+    holder.parent.remove(holder)
+    return True
