@@ -10,7 +10,7 @@ tests them), and atoms a start state brings that no action knows are ignored the
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Container, Iterable, Sequence
 
 from btplan.model import WILDCARD, Atom, GroundAction, GroundLiteral, matches
 
@@ -74,6 +74,7 @@ class PackedActions:
                 self.by_pre[number].append(i)
             (self.anchor[pre[0]] if pre else self.free).append(i)
         self.sizes = [len(pre) for pre in self.pre]
+        self._unreached = [-2] * len(ids)
         self._goals: list[int] = []
         self._goal_set: frozenset[int] = frozenset()
 
@@ -117,45 +118,53 @@ class PackedActions:
 
         A breadth-first relaxed exploration keeps the first achiever of each atom;
         the relaxed plan is extracted backwards from the goals (Hoffmann and Nebel 2001).
+        An action fires as soon as its last precondition is taken from the queue, and
+        the exploration stops at the first atom that leaves no goal unreached: the
+        supporters already chosen are all the extraction follows.
         """
-        supporter = [-2] * len(self.atoms)  # -2: not reached, -1: true in the state
+        supporter = self._unreached[:]  # -2: not reached, -1: true in the state
         for atom in true:
             supporter[atom] = -1
-        missing = len({g for g in goals if supporter[g] == -2})
+        wanted = self._wanted(goals)
+        missing = len([g for g in wanted if supporter[g] == -2])
         if not missing:
             return 0.0, set()
-        wanted = self._wanted(goals)
         adds, by_pre = self.add, self.by_pre
         waiting = self.sizes[:]
         frontier = list(true)
-        fired = self.free
+        for i in self.free:
+            for atom in adds[i]:
+                if supporter[atom] == -2:
+                    supporter[atom] = i
+                    frontier.append(atom)
+                    if atom in wanted:
+                        missing -= 1
         head = 0
-        while True:
-            for i in fired:
+        while missing and head < len(frontier):
+            for i in by_pre[frontier[head]]:
+                left = waiting[i] - 1
+                waiting[i] = left
+                if left:
+                    continue
                 for atom in adds[i]:
                     if supporter[atom] == -2:
                         supporter[atom] = i
                         frontier.append(atom)
                         if atom in wanted:
                             missing -= 1
-            if not missing or head == len(frontier):
-                break
-            fired = []
-            for i in by_pre[frontier[head]]:
-                left = waiting[i] - 1
-                waiting[i] = left
-                if not left:
-                    fired.append(i)
+                if not missing:
+                    break
             head += 1
         if missing:
             return INFINITE, set()
         chosen: set[int] = set()
+        pre = self.pre
         todo = [g for g in goals if supporter[g] >= 0]
         while todo:
             i = supporter[todo.pop()]
             if i >= 0 and i not in chosen:
                 chosen.add(i)
-                todo.extend(a for a in self.pre[i] if supporter[a] >= 0)
+                todo.extend(pre[i])
         return float(len(chosen)), chosen
 
     def _wanted(self, goals: Sequence[int]) -> frozenset[int]:
@@ -197,6 +206,62 @@ class PackedActions:
         for goal in goals:
             found |= label[goal] or 0
         return found
+
+    def necessary(self, marks: int, excluded: Container[int] = ()) -> dict[int, int]:
+        """For each atom of `marks`, the other atoms of `marks` that every action adding
+        it (but those `excluded`) needs, as a mask; only atoms with some are kept.
+
+        These are necessary orderings between landmarks: such an atom must hold again
+        before the landmark it comes before can be reached, even where the path made it
+        true once already (LAMA's landmarks "needed again").
+        """
+        common: dict[int, int] = {}
+        pre_mask = self.pre_mask
+        for i, adds in enumerate(self.add):
+            if i in excluded:
+                continue
+            need = pre_mask[i] & marks
+            for atom in adds:
+                if marks >> atom & 1:
+                    known = common.get(atom)
+                    common[atom] = need if known is None else known & need
+        return {atom: mask & ~(1 << atom) for atom, mask in common.items()
+                if mask & ~(1 << atom)}
+
+    def reasonable(self, marks: int, goals: Sequence[int], needed: dict[int, int],
+                   exclusive: Callable[[int, int], bool], excluded: Container[int] = ()
+                   ) -> dict[int, int]:
+        """For each goal of `goals` in `marks`, the other landmarks of `marks` that should
+        be reached before it, as a mask (reasonable orders, Hoffmann, Porteous and
+        Sebastia 2004, as LAMA approximates them for goals): a landmark whose every
+        achiever deletes the goal, that can never hold with it, or that needs (`needed`)
+        an atom that can never hold with it. Reaching the goal first is no progress: it
+        must be undone before the other landmark can be reached.
+        """
+        deletes: dict[int, int] = {}
+        for i, adds in enumerate(self.add):
+            if i in excluded:
+                continue
+            gone = self.del_mask[i] & ~self.add_mask[i]
+            for atom in adds:
+                if marks >> atom & 1:
+                    known = deletes.get(atom)
+                    deletes[atom] = gone if known is None else known & gone
+        out: dict[int, int] = {}
+        others = bits(marks)
+        for goal in dict.fromkeys(goals):
+            if not marks >> goal & 1:
+                continue
+            before = 0
+            for atom in others:
+                if atom == goal:
+                    continue
+                if (deletes.get(atom, 0) >> goal & 1 or exclusive(atom, goal)
+                        or any(exclusive(x, goal) for x in bits(needed.get(atom, 0)))):
+                    before |= 1 << atom
+            if before:
+                out[goal] = before
+        return out
 
     def goal_test(self, goal: Sequence[GroundLiteral], start: frozenset[Atom]
                   ) -> tuple[int, int, list[int]] | None:
