@@ -75,6 +75,19 @@ class PackedActions:
             (self.anchor[pre[0]] if pre else self.free).append(i)
         self.sizes = [len(pre) for pre in self.pre]
         self._unreached = [-2] * len(ids)
+        self._last = 0
+        self._waiting = self.sizes[:]
+        self._ready: set[int] = set()
+        # An action whose preconditions all hold fires when its last one (by number) is
+        # taken, after the actions listed before it under that atom.
+        count = len(self.actions)
+        self._firing = [0] * count
+        for number, needers in enumerate(self.by_pre):
+            for place, i in enumerate(needers):
+                if number == max(self.pre[i]):
+                    self._firing[i] = number * count + place
+        # `applicable` lists actions by their first precondition, then by number.
+        self._anchored = [pre[0] * count + i if pre else i for i, pre in enumerate(self.pre)]
         self._goals: list[int] = []
         self._goal_set: frozenset[int] = frozenset()
 
@@ -98,14 +111,13 @@ class PackedActions:
         return _mask(ids[a] for a in state if a in ids)
 
     def applicable(self, state: int, true: Sequence[int]) -> list[int]:
-        """The actions that can run in `state`, whose set bits are `true`; each action
-        is looked at only when its first precondition holds."""
-        pre_mask, neg_mask, anchor = self.pre_mask, self.neg_mask, self.anchor
+        """The actions that can run in `state`, whose set bits are `true` (lowest
+        first): those whose positive preconditions all hold (`_taken`, kept from the
+        last state asked, which `h_ff` has usually just asked for) and no negative one."""
+        neg_mask = self.neg_mask
         found = [i for i in self.free if not state & neg_mask[i]]
-        for atom in true:
-            for i in anchor[atom]:
-                if state & pre_mask[i] == pre_mask[i] and not state & neg_mask[i]:
-                    found.append(i)
+        found.extend(i for i in sorted(self._taken(true)[1], key=self._anchored.__getitem__)
+                     if not state & neg_mask[i])
         return found
 
     def apply(self, i: int, state: int) -> int:
@@ -130,16 +142,20 @@ class PackedActions:
         if not missing:
             return 0.0, set()
         adds, by_pre = self.add, self.by_pre
-        waiting = self.sizes[:]
+        base, holding = self._taken(true)
+        waiting = base[:]
+        ready = sorted(holding, key=self._firing.__getitem__)
         frontier = list(true)
-        for i in self.free:
+        for i in (*self.free, *ready):  # in the order taking the state's atoms fires them
             for atom in adds[i]:
                 if supporter[atom] == -2:
                     supporter[atom] = i
                     frontier.append(atom)
                     if atom in wanted:
                         missing -= 1
-        head = 0
+            if not missing:
+                break
+        head = len(true)
         while missing and head < len(frontier):
             for i in by_pre[frontier[head]]:
                 left = waiting[i] - 1
@@ -166,6 +182,31 @@ class PackedActions:
                 chosen.add(i)
                 todo.extend(pre[i])
         return float(len(chosen)), chosen
+
+    def _taken(self, true: Sequence[int]) -> tuple[list[int], set[int]]:
+        """The preconditions each action still waits for once the atoms `true` are taken,
+        and the actions that leaves waiting for none (neither to be changed).
+
+        Kept for the last state asked and updated by the atoms that differ: a search
+        asks for states near each other, and taking a state's own atoms was a third of
+        the exploration (the caller copies the list before changing it).
+        """
+        state = _mask(true)
+        by_pre, waiting, ready = self.by_pre, self._waiting, self._ready
+        last = self._last
+        for atom in bits(last & ~state):
+            for i in by_pre[atom]:
+                if not waiting[i]:
+                    ready.discard(i)
+                waiting[i] += 1
+        for atom in bits(state & ~last):
+            for i in by_pre[atom]:
+                left = waiting[i] - 1
+                waiting[i] = left
+                if not left:
+                    ready.add(i)
+        self._last = state
+        return waiting, ready
 
     def _wanted(self, goals: Sequence[int]) -> frozenset[int]:
         """`goals` as a set, the last one kept (a search asks for the same goals)."""

@@ -99,6 +99,11 @@ def test_h_ff_equals_the_plain_reference_and_its_plan_reaches_the_goal(
         true = bits(state)
         h, plan = packed.h_ff(true, goals)
         assert (h, plan) == reference_h_ff(packed, true, goals)
+        runnable = [i for i in range(len(packed.actions))
+                    if state & packed.pre_mask[i] == packed.pre_mask[i]
+                    and not state & packed.neg_mask[i]]  # by first precondition, then number
+        runnable.sort(key=lambda i: (bool(packed.pre[i]), packed.pre[i][:1], i))
+        assert packed.applicable(state, true) == runnable
         if h == INFINITE:
             continue
         looked += 1
