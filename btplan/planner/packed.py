@@ -57,7 +57,6 @@ class PackedActions:
         self.add_mask: list[int] = []
         self.del_mask: list[int] = []
         self.by_pre: list[list[int]] = [[] for _ in ids]
-        self.anchor: list[list[int]] = [[] for _ in ids]
         self.free: list[int] = []
         for i, action in enumerate(self.actions):
             pre = tuple(dict.fromkeys(ids[p.atom] for p in action.preconditions
@@ -72,7 +71,8 @@ class PackedActions:
             self.del_mask.append(_mask(ids[a] for a in action.delete))
             for number in pre:
                 self.by_pre[number].append(i)
-            (self.anchor[pre[0]] if pre else self.free).append(i)
+            if not pre:
+                self.free.append(i)
         self.sizes = [len(pre) for pre in self.pre]
         self._unreached = [-2] * len(ids)
         self._last = 0
