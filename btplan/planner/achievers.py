@@ -122,6 +122,8 @@ class AchieverIndex:
             relaxed = self.relaxed
             with building():
                 shared.search = SubgoalSearch(relaxed.actions)
+            shared.search.exclusive = lambda a, b: self.mutexes.exclusive(
+                GroundLiteral(a), GroundLiteral(b))  # the mutexes built when first asked
         return shared.search
 
     def achievers(

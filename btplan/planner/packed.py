@@ -10,7 +10,7 @@ tests them), and atoms a start state brings that no action knows are ignored the
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Container, Iterable, Sequence
 
 from btplan.model import WILDCARD, Atom, GroundAction, GroundLiteral, matches
 
@@ -57,7 +57,6 @@ class PackedActions:
         self.add_mask: list[int] = []
         self.del_mask: list[int] = []
         self.by_pre: list[list[int]] = [[] for _ in ids]
-        self.anchor: list[list[int]] = [[] for _ in ids]
         self.free: list[int] = []
         for i, action in enumerate(self.actions):
             pre = tuple(dict.fromkeys(ids[p.atom] for p in action.preconditions
@@ -72,8 +71,23 @@ class PackedActions:
             self.del_mask.append(_mask(ids[a] for a in action.delete))
             for number in pre:
                 self.by_pre[number].append(i)
-            (self.anchor[pre[0]] if pre else self.free).append(i)
+            if not pre:
+                self.free.append(i)
         self.sizes = [len(pre) for pre in self.pre]
+        self._unreached = [-2] * len(ids)
+        self._last = 0
+        self._waiting = self.sizes[:]
+        self._ready: set[int] = set()
+        # An action whose preconditions all hold fires when its last one (by number) is
+        # taken, after the actions listed before it under that atom.
+        count = len(self.actions)
+        self._firing = [0] * count
+        for number, needers in enumerate(self.by_pre):
+            for place, i in enumerate(needers):
+                if number == max(self.pre[i]):
+                    self._firing[i] = number * count + place
+        # `applicable` lists actions by their first precondition, then by number.
+        self._anchored = [pre[0] * count + i if pre else i for i, pre in enumerate(self.pre)]
         self._goals: list[int] = []
         self._goal_set: frozenset[int] = frozenset()
 
@@ -97,14 +111,13 @@ class PackedActions:
         return _mask(ids[a] for a in state if a in ids)
 
     def applicable(self, state: int, true: Sequence[int]) -> list[int]:
-        """The actions that can run in `state`, whose set bits are `true`; each action
-        is looked at only when its first precondition holds."""
-        pre_mask, neg_mask, anchor = self.pre_mask, self.neg_mask, self.anchor
+        """The actions that can run in `state`, whose set bits are `true` (lowest
+        first): those whose positive preconditions all hold (`_taken`, kept from the
+        last state asked, which `h_ff` has usually just asked for) and no negative one."""
+        neg_mask = self.neg_mask
         found = [i for i in self.free if not state & neg_mask[i]]
-        for atom in true:
-            for i in anchor[atom]:
-                if state & pre_mask[i] == pre_mask[i] and not state & neg_mask[i]:
-                    found.append(i)
+        found.extend(i for i in sorted(self._taken(true)[1], key=self._anchored.__getitem__)
+                     if not state & neg_mask[i])
         return found
 
     def apply(self, i: int, state: int) -> int:
@@ -117,46 +130,83 @@ class PackedActions:
 
         A breadth-first relaxed exploration keeps the first achiever of each atom;
         the relaxed plan is extracted backwards from the goals (Hoffmann and Nebel 2001).
+        An action fires as soon as its last precondition is taken from the queue, and
+        the exploration stops at the first atom that leaves no goal unreached: the
+        supporters already chosen are all the extraction follows.
         """
-        supporter = [-2] * len(self.atoms)  # -2: not reached, -1: true in the state
+        supporter = self._unreached[:]  # -2: not reached, -1: true in the state
         for atom in true:
             supporter[atom] = -1
-        missing = len({g for g in goals if supporter[g] == -2})
+        wanted = self._wanted(goals)
+        missing = len([g for g in wanted if supporter[g] == -2])
         if not missing:
             return 0.0, set()
-        wanted = self._wanted(goals)
         adds, by_pre = self.add, self.by_pre
-        waiting = self.sizes[:]
+        base, holding = self._taken(true)
+        waiting = base[:]
+        ready = sorted(holding, key=self._firing.__getitem__)
         frontier = list(true)
-        fired = self.free
-        head = 0
-        while True:
-            for i in fired:
+        for i in (*self.free, *ready):  # in the order taking the state's atoms fires them
+            for atom in adds[i]:
+                if supporter[atom] == -2:
+                    supporter[atom] = i
+                    frontier.append(atom)
+                    if atom in wanted:
+                        missing -= 1
+            if not missing:
+                break
+        head = len(true)
+        while missing and head < len(frontier):
+            for i in by_pre[frontier[head]]:
+                left = waiting[i] - 1
+                waiting[i] = left
+                if left:
+                    continue
                 for atom in adds[i]:
                     if supporter[atom] == -2:
                         supporter[atom] = i
                         frontier.append(atom)
                         if atom in wanted:
                             missing -= 1
-            if not missing or head == len(frontier):
-                break
-            fired = []
-            for i in by_pre[frontier[head]]:
-                left = waiting[i] - 1
-                waiting[i] = left
-                if not left:
-                    fired.append(i)
+                if not missing:
+                    break
             head += 1
         if missing:
             return INFINITE, set()
         chosen: set[int] = set()
+        pre = self.pre
         todo = [g for g in goals if supporter[g] >= 0]
         while todo:
             i = supporter[todo.pop()]
             if i >= 0 and i not in chosen:
                 chosen.add(i)
-                todo.extend(a for a in self.pre[i] if supporter[a] >= 0)
+                todo.extend(pre[i])
         return float(len(chosen)), chosen
+
+    def _taken(self, true: Sequence[int]) -> tuple[list[int], set[int]]:
+        """The preconditions each action still waits for once the atoms `true` are taken,
+        and the actions that leaves waiting for none (neither to be changed).
+
+        Kept for the last state asked and updated by the atoms that differ: a search
+        asks for states near each other, and taking a state's own atoms was a third of
+        the exploration (the caller copies the list before changing it).
+        """
+        state = _mask(true)
+        by_pre, waiting, ready = self.by_pre, self._waiting, self._ready
+        last = self._last
+        for atom in bits(last & ~state):
+            for i in by_pre[atom]:
+                if not waiting[i]:
+                    ready.discard(i)
+                waiting[i] += 1
+        for atom in bits(state & ~last):
+            for i in by_pre[atom]:
+                left = waiting[i] - 1
+                waiting[i] = left
+                if not left:
+                    ready.add(i)
+        self._last = state
+        return waiting, ready
 
     def _wanted(self, goals: Sequence[int]) -> frozenset[int]:
         """`goals` as a set, the last one kept (a search asks for the same goals)."""
@@ -197,6 +247,62 @@ class PackedActions:
         for goal in goals:
             found |= label[goal] or 0
         return found
+
+    def necessary(self, marks: int, excluded: Container[int] = ()) -> dict[int, int]:
+        """For each atom of `marks`, the other atoms of `marks` that every action adding
+        it (but those `excluded`) needs, as a mask; only atoms with some are kept.
+
+        These are necessary orderings between landmarks: such an atom must hold again
+        before the landmark it comes before can be reached, even where the path made it
+        true once already (LAMA's landmarks "needed again").
+        """
+        common: dict[int, int] = {}
+        pre_mask = self.pre_mask
+        for i, adds in enumerate(self.add):
+            if i in excluded:
+                continue
+            need = pre_mask[i] & marks
+            for atom in adds:
+                if marks >> atom & 1:
+                    known = common.get(atom)
+                    common[atom] = need if known is None else known & need
+        return {atom: mask & ~(1 << atom) for atom, mask in common.items()
+                if mask & ~(1 << atom)}
+
+    def reasonable(self, marks: int, goals: Sequence[int], needed: dict[int, int],
+                   exclusive: Callable[[int, int], bool], excluded: Container[int] = ()
+                   ) -> dict[int, int]:
+        """For each goal of `goals` in `marks`, the other landmarks of `marks` that should
+        be reached before it, as a mask (reasonable orders, Hoffmann, Porteous and
+        Sebastia 2004, as LAMA approximates them for goals): a landmark whose every
+        achiever deletes the goal, that can never hold with it, or that needs (`needed`)
+        an atom that can never hold with it. Reaching the goal first is no progress: it
+        must be undone before the other landmark can be reached.
+        """
+        deletes: dict[int, int] = {}
+        for i, adds in enumerate(self.add):
+            if i in excluded:
+                continue
+            gone = self.del_mask[i] & ~self.add_mask[i]
+            for atom in adds:
+                if marks >> atom & 1:
+                    known = deletes.get(atom)
+                    deletes[atom] = gone if known is None else known & gone
+        out: dict[int, int] = {}
+        others = bits(marks)
+        for goal in dict.fromkeys(goals):
+            if not marks >> goal & 1:
+                continue
+            before = 0
+            for atom in others:
+                if atom == goal:
+                    continue
+                if (deletes.get(atom, 0) >> goal & 1 or exclusive(atom, goal)
+                        or any(exclusive(x, goal) for x in bits(needed.get(atom, 0)))):
+                    before |= 1 << atom
+            if before:
+                out[goal] = before
+        return out
 
     def goal_test(self, goal: Sequence[GroundLiteral], start: frozenset[Atom]
                   ) -> tuple[int, int, list[int]] | None:

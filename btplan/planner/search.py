@@ -23,7 +23,7 @@ from __future__ import annotations
 import heapq
 import itertools
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 from btplan.model import Atom, GroundAction, GroundLiteral
 from btplan.planner.packed import INFINITE, PackedActions, bits
@@ -50,6 +50,12 @@ class SubgoalSearch:
         self.use_landmarks = True
         """Whether the landmark queues take part (off: h_FF and its preferred queue only)."""
         self.boost = BOOST
+        self.landmark_orders = False
+        """Whether landmarks count again when needed again and goals reached too early
+        count as not reached (LAMA's orders; off: measured mixed, see docs/planner.md)."""
+        self.exclusive: Callable[[Atom, Atom], bool] | None = None
+        """Whether two atoms can never hold together (mutexes), for the reasonable
+        orders of landmarks; without it there are none."""
 
     def search(
         self,
@@ -143,20 +149,60 @@ class SearchRun:
         test = packed.goal_test(goal, start)
         first = packed.encode(start)
         self.parents: Parents = {first: None}  # each state's best parent so far
-        self.reached: dict[int, int] = {}  # the landmarks each expanded state's path reached
         self.keys: dict[int, float] = {first: 0.0}  # the h_FF each waiting state waits with
+        self.reached: dict[int, int] = {}  # the landmarks each expanded state's path reached
         self.positive, self.negative, self.numbers = test or (0, 0, [])
         if test is None:
             self._finish(exhausted=True)
         self.banned = engine.banned(keep) | packed.static_misses(start)
-        self.marks = (packed.landmarks(bits(first), self.numbers) & ~first
-                      if engine.use_landmarks and not self.done else 0)
+        every = (packed.landmarks(bits(first), self.numbers)
+                 if engine.use_landmarks and not self.done else 0)
+        self.marks = every & ~first
+        """The landmarks the start lacks: each counts until the path reaches it."""
+        self.again = self.positive
+        """The landmarks that count again when the path reached them and they are false
+        now: the goals, and (`needed`) those ordered before a landmark not yet reached."""
+        ordered = engine.landmark_orders and bool(self.marks)
+        needed = packed.necessary(every, self.banned) if ordered else {}
+        self.needed = list(needed.items())
+        exclusive = engine.exclusive
+        self.orders = list(packed.reasonable(
+            self.marks, self.numbers, needed, lambda a, b: exclusive(
+                packed.atoms[a], packed.atoms[b]), self.banned).items()) \
+            if ordered and exclusive is not None else []
+        """Goals and the landmarks they come after: a goal reached before them is not
+        yet counted as reached."""
+        # What the start's "parent" passed: with the orders, the landmarks the start
+        # has, so that they too count again when needed again (and so do the goals).
+        self.reached[-1] = every & first if ordered else 0
         self.queues: list[list[tuple[float, int, int, int, int]]] = [
             [] for _ in range(4 if self.marks else 2)]
         self.turns = [0] * len(self.queues)
         self.best = [INFINITE] * 2
         self.counter = itertools.count()
         self.queues[0].append((0.0, next(self.counter), first, -1, -1))
+
+    def progress(self, passed: int, state: int) -> int:
+        """The landmarks reached on the path to `state`, its parent's path having
+        reached `passed`: those true in it, but a goal whose landmarks ordered before
+        it (`orders`) are neither reached before nor true in it."""
+        new = state & self.marks & ~passed
+        if new and self.orders:
+            now = passed | new
+            for goal, before in self.orders:
+                if new >> goal & 1 and before & ~now:
+                    new &= ~(1 << goal)
+        return passed | new
+
+    def count(self, state: int, passed: int) -> int:
+        """The landmark estimate: landmarks not yet reached on the path, and those
+        reached, false in `state` and needed again (Richter and Westphal 2010)."""
+        missing = self.marks & ~passed
+        again = self.again
+        for atom, before in self.needed:
+            if missing >> atom & 1:
+                again |= before
+        return bin(missing).count("1") + bin(again & passed & ~state).count("1")
 
     def _finish(self, exhausted: bool = False, plan: list[GroundAction] | None = None) -> None:
         self.done, self.exhausted, self.plan = True, exhausted, plan
@@ -185,9 +231,8 @@ class SearchRun:
                 reached[state] = 0  # a dead end: never looked at again
                 continue
             h += bin(state & negative).count("1")
-            passed = reached[state] = (0 if parent < 0 else reached[parent]) | (state & marks)
-            estimates = (h, (bin(marks & ~passed).count("1")
-                             + bin(positive & passed & ~state).count("1")) if marks else h)
+            passed = reached[state] = self.progress(reached[parent], state)
+            estimates = (h, self.count(state, passed) if marks else h)
             engine.improved(estimates, self.best, turns)
             self.expanded = engine.expanded = self.expanded + 1
             if self.expanded >= self.max_states or (
