@@ -28,7 +28,8 @@ _VALUED = {
     "--max-expansions": "max_expansions", "--max-ticks": "max_ticks",
     "--max-alternatives": "max_alternatives", "--timeout": "timeout",
 }
-_FLAGS = {"--paper": "paper", "--no-search": "no_search", "-q": "quiet", "--quiet": "quiet"}
+_FLAGS = {"--paper": "paper", "--no-search": "no_search", "--no-improve": "no_improve",
+          "-q": "quiet", "--quiet": "quiet"}
 _INTEGERS = {"seed", "max_expansions", "max_ticks", "max_alternatives"}
 _INTEGER = re.compile(r"[0-9]{1,18}")
 _DECIMAL = re.compile(r"[0-9]{1,15}(\.[0-9]{0,6})?|\.[0-9]{1,6}")
