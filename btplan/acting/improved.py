@@ -34,10 +34,10 @@ from btplan.planner.reach import building
 from btplan.records import record
 from btplan.worlds.symbolic import SymbolicWorld
 
-MIN_SECONDS = 1.0
+MIN_SECONDS = 0.5
 """Seconds the improvement may take however fast planning was (within the time limit)."""
 
-PLANNING_SHARE = 0.5
+PLANNING_SHARE = 0.25
 """Beyond MIN_SECONDS, the improvement may take this share of the time planning took."""
 
 LEFT_SHARE = 0.5
