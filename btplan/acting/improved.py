@@ -28,7 +28,8 @@ from btplan.bt import Sequence as SequenceNode
 from btplan.model import GroundAction, GroundLiteral, Task
 from btplan.planner import AchieverIndex, condition_node
 from btplan.planner.expand import GOAL_CHECK, action_node
-from btplan.planner.improve import Improvement, Limits, PlanSpace, improve
+from btplan.planner.improve import Improvement, improve
+from btplan.planner.neighbourhood import Limits, PlanSpace
 from btplan.planner.packed import PackedActions
 from btplan.planner.reach import building
 from btplan.records import record

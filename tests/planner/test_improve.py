@@ -10,7 +10,8 @@ from btplan.acting.offline import load, plan
 from btplan.lang.generators import generate
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex
-from btplan.planner.improve import Limits, PlanSpace, eliminate, improve
+from btplan.planner.improve import eliminate, improve
+from btplan.planner.neighbourhood import Limits, PlanSpace
 from tests.planner.test_classic import validate
 
 WALK = """(define (domain walk)
