@@ -35,7 +35,7 @@ from btplan.planner.reach import building
 from btplan.records import record
 from btplan.worlds.symbolic import SymbolicWorld
 
-MIN_SECONDS = 0.5
+MIN_SECONDS = 0.25
 """Seconds the improvement may take however fast planning was (within the time limit)."""
 
 PLANNING_SHARE = 0.25
@@ -44,6 +44,10 @@ PLANNING_SHARE = 0.25
 LEFT_SHARE = 0.5
 """It never takes more than this share of the time left before the deadline: the tree
 still has to be run and written."""
+
+MIN_LEFT = 1.0
+"""Seconds that must be left before the deadline for the improvement to start at all:
+putting a plan into the tree and running it is not bounded by the budget."""
 
 SEARCH_SHARE = 0.75
 """The share of the improvement's time the search gets; putting the plan into the tree
@@ -61,7 +65,8 @@ def budget(started: float, now: float, deadline: float | None) -> float:
     """Seconds the improvement may take, planning having run from `started` to `now`."""
     seconds = max(MIN_SECONDS, PLANNING_SHARE * (now - started))
     if deadline is not None:
-        seconds = min(seconds, LEFT_SHARE * max(0.0, deadline - now))
+        left = deadline - now
+        seconds = min(seconds, LEFT_SHARE * left) if left >= MIN_LEFT else 0.0
     return seconds
 
 

@@ -241,6 +241,8 @@ def _improve(run: _Run, result: PlanResult, say: Callable[[str], None] | None) -
 
     started = time.perf_counter()
     seconds = budget(run.started, started, run.deadline)
+    if seconds <= 0:
+        return result  # too close to the deadline: the plan stays as found
     if say is not None:
         say(f"improving the plan of {len(result.executed)} steps (up to {seconds:.1f} s)")
     found = improve_executed(run.task, run.models, result.tree, result.executed, run.seed,

@@ -126,7 +126,8 @@ def test_shared_conditions_pick_the_same_step_as_the_flat_alternatives(tmp_path:
 
 
 def test_the_budget_is_a_share_of_planning_and_never_past_the_deadline() -> None:
-    assert budget(0.0, 0.1, None) == 0.5  # fast planning: the minimum
+    assert budget(0.0, 0.1, None) == 0.25  # fast planning: the minimum
     assert budget(0.0, 10.0, None) == 2.5  # a quarter of the planning time
     assert budget(0.0, 10.0, 12.0) == 1.0  # half of what is left
+    assert budget(0.0, 10.0, 10.5) == 0.0  # under a second left: no improvement
     assert budget(0.0, 10.0, 9.0) == 0.0
