@@ -7,8 +7,8 @@ shorter plan goes into the tree ahead of the backchained tree, as the teleo-reac
 steps the last resort's plans become (`rescue.plan_alternatives`, with what
 consecutive steps share checked once: `shared_first`):
 
-    Sequence(Fallback(the goals hold, step n, ..., step 1, the backchained tree),
-             all goals hold)
+    Retry(Sequence(Fallback(the goals hold, step n, ..., step 1, the backchained tree),
+                   all goals hold))
 
 From the initial state the latest step whose regressed condition holds runs, so the
 tree executes the shorter plan (or skips ahead where the world lets it); where no
@@ -23,7 +23,7 @@ import time
 from bisect import bisect_left
 from collections.abc import Callable, Iterable, Sequence
 
-from btplan.bt import FAILURE, SUCCESS, BehaviorTree, Fallback, Node
+from btplan.bt import FAILURE, SUCCESS, BehaviorTree, Fallback, Node, Retry
 from btplan.bt import Sequence as SequenceNode
 from btplan.model import GroundAction, GroundLiteral, Task
 from btplan.planner import AchieverIndex, condition_node
@@ -59,6 +59,13 @@ neighbourhood search (an estimate: `packed_for`)."""
 
 IMPROVED = "shorter plan first"
 """Name of the Fallback that holds the shorter plan's steps ahead of the backchained tree."""
+
+UNTIL_DONE = "step by step until the goals hold"
+"""Name of the Retry at the root: a step that finishes within its tick leaves the goals
+not yet true, and the final check fails; the Retry answers RUNNING then (BT.CPP 4's
+RetryUntilSuccessful tries a child that failed at once again on the next tick), so the
+tree reports FAILURE only when it is stuck: after twice as many failed ticks as the
+plan has steps."""
 
 
 def budget(started: float, now: float, deadline: float | None) -> float:
@@ -136,7 +143,8 @@ def plan_first(tree: BehaviorTree, task: Task, steps: Sequence[GroundAction]) ->
                    else SequenceNode([condition_node(g, task) for g in goal]))
     final = SequenceNode([condition_node(g, task) for g in goal], name=GOAL_CHECK)
     ahead = Fallback([holds, *alternatives, tree.root], name=IMPROVED)
-    return BehaviorTree(SequenceNode([ahead, final]))
+    return BehaviorTree(Retry(SequenceNode([ahead, final]), attempts=2 * len(steps) + 1,
+                              name=UNTIL_DONE))
 
 
 class Latest:
@@ -211,7 +219,7 @@ def shared_first(steps: list[Step], held: frozenset[GroundLiteral], task: Task, 
 
 def undo_plan_first(improved: BehaviorTree) -> None:
     """Detach the backchained tree's root again from a tree `plan_first` made."""
-    ahead = improved.root.children[0]
+    ahead = improved.root.children[0].children[0]
     assert isinstance(ahead, Fallback)
     ahead.remove(ahead.children[-1])
 
@@ -219,16 +227,14 @@ def undo_plan_first(improved: BehaviorTree) -> None:
 def run_from_start(tree: BehaviorTree, task: Task, seed: int,
                    steps: Sequence[GroundAction]) -> tuple[list[GroundAction], int] | None:
     """(the actions `tree` executes from the initial state, ticks) until it succeeds;
-    None when it stops succeeding, failing without acting, or takes more ticks than
-    `steps` needs."""
+    None when it fails, or takes more ticks than `steps` needs."""
     world = SymbolicWorld(task, seed=seed, groundings={a.key: a for a in steps})
     limit = sum(max(1, a.duration) for a in steps) + 1
     for tick in range(1, limit + 1):
-        before = len(world.executed), world.facts()
         status = tree.tick(world)
         if status is SUCCESS:
             return list(world.executed), tick
-        if status is FAILURE and (len(world.executed), world.facts()) == before:
+        if status is FAILURE:
             break
     tree.halt(world)
     return None

@@ -183,7 +183,7 @@ def _improvement(s: PlanStats) -> str:
     if s.removed is None:
         return ""
     if not s.removed:
-        return f"; plan improvement found no shorter plan ({s.improve_seconds:.2f} s)"
+        return f"; plan improvement found no plan with fewer steps ({s.improve_seconds:.2f} s)"
     searched = s.removed - s.eliminated
     return (f"; plan improvement removed {s.removed} of {s.actions_executed + s.removed} steps "
             f"({s.eliminated} by action elimination, {searched} by neighbourhood search, "

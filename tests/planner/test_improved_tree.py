@@ -38,7 +38,7 @@ def test_the_tree_executes_the_shorter_plan_it_reports(tmp_path: Path) -> None:
     assert after.stats.actions_executed == 5 and after.stats.cost == 5
     assert after.stats.tree_size == len(after.tree.nodes())
     # the backchained tree is kept, behind the shorter plan's steps
-    kept = after.tree.root.children[0].children[-1]
+    kept = after.tree.root.children[0].children[0].children[-1]
     assert shape(kept) == shape(before.tree.root)
 
 
