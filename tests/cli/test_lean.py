@@ -48,6 +48,7 @@ VECTORS = [
     ["plan", "d.pddl", "p.pddl", "-f", "dot", "-o", "tree.dot", "--plan-out", "plan.txt"],
     ["plan", "-q", "d.pddl", "--format=xml", "p.pddl", "--seed", "3", "--timeout=2.5"],
     ["plan", "d.pddl", "p.pddl", "--out", "t.json", "-o", "u.json", "--paper", "--no-search"],
+    ["plan", "d.pddl", "p.pddl", "--no-improve", "--plan-out", "plan.txt"],
     ["plan", "d.pddl", "p.pddl", "--max-expansions", "0"],
     ["plan", "d.pddl", "p.pddl", "--max-alternatives", "1", "--max-ticks", "3"],
     ["plan", "missing.pddl", "p.pddl"],
