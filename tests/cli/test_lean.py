@@ -84,4 +84,4 @@ def test_anything_else_is_left_to_typer(args: list[str]) -> None:
 
 def test_the_vectors_above_take_both_paths() -> None:
     lean = [read_plan_arguments(argv[1:]) is not None for argv in VECTORS]
-    assert lean == [True] * 9 + [False] * 4
+    assert lean == [True] * 10 + [False] * 4
