@@ -70,6 +70,12 @@ class PlanStats:
     """Attempts started over, each without an achiever choice that failed (backjump.py)."""
     whole_goal: bool = False
     """Whether the tree is the last resort's: a searched plan for the whole goal."""
+    removed: int | None = None
+    """Steps plan improvement took out of the executed plan (None: not tried)."""
+    eliminated: int = 0
+    """Of those, the ones action elimination took out (the rest: plan-neighbourhood search)."""
+    improve_seconds: float = 0.0
+    """Time plan improvement took."""
 
 
 @record
@@ -93,6 +99,8 @@ def plan(
     on_expansion: Callable[[BehaviorTree, Expansion], None] | None = None,
     stop: Callable[[], bool] | None = None,
     last_resort: bool = True,
+    improve: bool = True,
+    say: Callable[[str], None] | None = None,
 ) -> PlanResult:
     """Backchain a BT for `task` by planning and acting in the symbolic world.
 
@@ -103,6 +111,10 @@ def plan(
     when every strategy fails, a plan for the whole goal is searched from the initial
     state and put behind the goal tree (with a time limit, backchaining has
     BACKCHAIN_SHARE of it). Explicit options run as they are.
+
+    With `improve` (and the options' `improve_plan`), the executed plan is then made
+    shorter within a share of the time (btplan/acting/improved.py), and the tree runs
+    the shorter plan; `say` hears what that step is doing.
 
     Raises a PlanningError (NoAchieverError, UnresolvableConflictError,
     NoProgressError, BudgetExceededError) with a reason when no tree is found, and
@@ -136,13 +148,14 @@ def plan(
             share = replace(run, deadline=soft, timeout=soft - started, limit=(
                 f"backchaining's share ({timeout * BACKCHAIN_SHARE:g} s) of the {timeout:g} s "
                 "time limit"))
-        return _strategies(share, strategies, None if early is None else (
+        result = _strategies(share, strategies, None if early is None else (
             lambda: _early(run, opts, early)))
     except PlanningError as error:
         out_of_time = deadline is not None and time.perf_counter() >= deadline
         if last is None or out_of_time:
             raise
-        return _whole_goal(run, opts, error, last)
+        result = _whole_goal(run, opts, error, last)
+    return _improve(run, result, say) if improve and opts.improve_plan else result
 
 
 @record(frozen=True)
@@ -220,6 +233,34 @@ def _whole_goal(run: _Run, opts: PlannerOptions, backchaining: PlanningError,
             f"{backchaining.reason}; then the search for the whole goal from the initial state "
             f"found no plan ({last.why(run.deadline)})")
     return _adopt(run, opts, steps)
+
+
+def _improve(run: _Run, result: PlanResult, say: Callable[[str], None] | None) -> PlanResult:
+    """The result with a shorter plan ahead of its tree, when one is found in time."""
+    from btplan.acting.improved import budget, improve_executed
+
+    started = time.perf_counter()
+    seconds = budget(run.started, started, run.deadline)
+    if seconds <= 0:
+        return result  # too close to the deadline: the plan stays as found
+    if say is not None:
+        say(f"improving the plan of {len(result.executed)} steps (up to {seconds:.1f} s)")
+    found = improve_executed(run.task, run.models, result.tree, result.executed, run.seed,
+                             seconds, run.stop)
+    if run.stop is not None and run.stop():
+        raise Interrupted(f"planning, while improving the plan of {len(result.executed)} steps")
+    now = time.perf_counter()
+    stats = replace(result.stats, removed=0, improve_seconds=now - started,
+                    seconds=now - run.started)
+    if found is None:
+        return replace(result, stats=stats)
+    stats.removed = len(result.executed) - len(found.executed)
+    stats.eliminated = min(found.found.eliminated, stats.removed)
+    stats.tree_size = len(found.tree.nodes())
+    stats.actions_executed = len(found.executed)
+    stats.cost = sum(a.cost for a in found.executed)
+    stats.ticks += found.ticks
+    return replace(result, tree=found.tree, executed=found.executed, stats=stats)
 
 
 def _adopt(run: _Run, opts: PlannerOptions, steps: list[GroundAction]) -> PlanResult:

@@ -27,7 +27,8 @@ _VALUED = {
     "--max-expansions": "max_expansions", "--max-ticks": "max_ticks",
     "--max-alternatives": "max_alternatives", "--timeout": "timeout",
 }
-_FLAGS = {"--paper": "paper", "--no-search": "no_search", "-q": "quiet", "--quiet": "quiet"}
+_FLAGS = {"--paper": "paper", "--no-search": "no_search", "--no-improve": "no_improve",
+          "-q": "quiet", "--quiet": "quiet"}
 _INTEGERS = {"seed", "max_expansions", "max_ticks", "max_alternatives"}
 _COMPLETION = "_BTPLAN_COMPLETE"
 """click's shell-completion switch for the `btplan` program: the typer app handles it."""

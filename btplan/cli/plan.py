@@ -73,6 +73,10 @@ def plan_command(
         "--no-search", help="Never search (the last resort: for a stuck condition, or for "
         "the whole goal when backchaining fails).")
     ] = False,
+    no_improve: Annotated[bool, typer.Option(
+        "--no-improve", help="Keep the executed plan as backchaining found it (no action "
+        "elimination, no neighbourhood search; the tree stays the backchained one).")
+    ] = False,
     timeout: Annotated[float, typer.Option(
         "--timeout", metavar="SECONDS",
         help="Give up after SECONDS seconds (exit 1); 0: no limit.")] = DEFAULT_TIMEOUT,
@@ -87,7 +91,7 @@ def plan_command(
     plan_and_write(domain, problem, fmt.value if fmt is not None else None,
                    out_alias if out_alias is not None else out, plan_out, trace_expansions,
                    seed, max_expansions, max_ticks, max_alternatives, paper, no_search,
-                   timeout, quiet)
+                   timeout, quiet, no_improve)
 
 
 __all__ = ["DEFAULT_TIMEOUT", "Format", "Progress", "default_format", "plan_command",

@@ -23,7 +23,7 @@ from btplan.records import replace
 
 if TYPE_CHECKING:
     from btplan.acting.loop import Expansion
-    from btplan.acting.offline import PlanResult
+    from btplan.acting.offline import PlanResult, PlanStats
     from btplan.bt import BehaviorTree
 
 DEFAULT_TIMEOUT = 300.0
@@ -38,7 +38,7 @@ def plan_and_write(domain: str, problem: str | None = None, fmt: str | None = No
                    max_expansions: int = 1000, max_ticks: int = 100_000,
                    max_alternatives: int | None = None, paper: bool = False,
                    no_search: bool = False, timeout: float = DEFAULT_TIMEOUT,
-                   quiet: bool = False) -> None:
+                   quiet: bool = False, no_improve: bool = False) -> None:
     """The command `btplan plan`, its arguments read and typed (see its --help)."""
     # Imported here, not at the top: the typer app imports this module to build the
     # command line, and the planner, the trees and their formats serve only this command.
@@ -78,7 +78,8 @@ def plan_and_write(domain: str, problem: str | None = None, fmt: str | None = No
             with collecting():
                 result = plan(task, seed=seed, max_expansions=max_expansions,
                               max_ticks=max_ticks, timeout=timeout or None, options=options,
-                              on_expansion=trace, stop=interrupted, last_resort=not no_search)
+                              on_expansion=trace, stop=interrupted, last_resort=not no_search,
+                              improve=not no_improve, say=progress.say)
         except Interrupted as error:
             stderr.print(f"[bold yellow]interrupted[/]: {escape(error.progress)}; "
                          "nothing written")
@@ -161,6 +162,17 @@ class Progress:
             sys.stderr.write(line + "\n")
         sys.stderr.flush()
 
+    def say(self, text: str) -> None:
+        """A line about what planning does next, once it has run for a second."""
+        now = time.perf_counter()
+        if not self.enabled or now - self.started < 1.0:
+            return
+        self.shown = now
+        self.close()
+        self.dirty = False
+        sys.stderr.write(f"planning: {text}, {now - self.started:.0f} s\n")
+        sys.stderr.flush()
+
     def close(self) -> None:
         if self.dirty:
             sys.stderr.write("\r\x1b[2K")
@@ -194,4 +206,17 @@ def summary(result: PlanResult) -> str:
            if s.searches else "")
         + (f"; {s.retries} attempts started over without a choice that failed"
            if s.retries else "")
+        + _improvement(s)
     )
+
+
+def _improvement(s: PlanStats) -> str:
+    """What plan improvement did, for the summary ('' when it did not run)."""
+    if s.removed is None:
+        return ""
+    if not s.removed:
+        return f"; plan improvement found no plan with fewer steps ({s.improve_seconds:.2f} s)"
+    searched = s.removed - s.eliminated
+    return (f"; plan improvement removed {s.removed} of {s.actions_executed + s.removed} steps "
+            f"({s.eliminated} by action elimination, {searched} by neighbourhood search, "
+            f"{s.improve_seconds:.2f} s)")

@@ -34,6 +34,7 @@ from btplan.planner.protocol import Refiner
 from btplan.planner.reach import building
 
 if TYPE_CHECKING:
+    from btplan.planner.packed import PackedActions
     from btplan.planner.search import SubgoalSearch
 
 ALL = 1 << 30
@@ -49,6 +50,7 @@ class _Shared:
         self.relaxed: RelaxedModel | None = None
         self.mutexes: Mutexes | None = None
         self.search: SubgoalSearch | None = None
+        self.packed: PackedActions | None = None
         self.static: StaticBindings | None = None
         self.profiles: dict[int, _Profile] = {}
 
@@ -125,6 +127,27 @@ class AchieverIndex:
             shared.search.exclusive = lambda a, b: self.mutexes.exclusive(
                 GroundLiteral(a), GroundLiteral(b))  # the mutexes built when first asked
         return shared.search
+
+    @property
+    def has_packed(self) -> bool:
+        """Whether `packed` is built already (by the search, or on its own)."""
+        return self._shared.search is not None or self._shared.packed is not None
+
+    @property
+    def packed(self) -> PackedActions:
+        """The relaxed model's groundings as bit masks (those the search holds: none that
+        deletes by pattern), the search's own when it was built, else built on first use."""
+        shared = self._shared
+        if shared.search is not None:
+            return shared.search.packed
+        if shared.packed is None:
+            from btplan.planner.packed import PackedActions
+
+            relaxed = self.relaxed
+            with building():
+                shared.packed = PackedActions([a for a in relaxed.actions
+                                               if not a.delete_patterns])
+        return shared.packed
 
     def achievers(
         self,

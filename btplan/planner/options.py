@@ -38,8 +38,10 @@ class PlannerOptions:
     `expansions_per_tick` lets the acting loop tick the tree again, within the same tick
     (the world has not moved), after an expansion, up to that many expansions: Algorithm 1
     as published spends a tick of the world per expansion, which a sequential planner,
-    planning before it acts, does not. `PlannerOptions.paper()` turns every departure
-    from the paper off, for comparison.
+    planning before it acts, does not. `improve_plan`: offline planning shortens the
+    executed plan once found (btplan/planner/improve.py) and puts the shorter plan
+    ahead of the tree (btplan/acting/improved.py). `PlannerOptions.paper()` turns every
+    departure from the paper off, for comparison.
     """
 
     max_expansions: int = 1000
@@ -60,6 +62,7 @@ class PlannerOptions:
     state_agenda: bool = False
     stall_limit: int = 3
     expansions_per_tick: int = 1
+    improve_plan: bool = True
 
     @classmethod
     def paper(cls, **changes: Any) -> PlannerOptions:
@@ -67,5 +70,5 @@ class PlannerOptions:
         base = cls(heuristic=False, reorder_goals=False, mutexes=False, refine_more=False,
                    closest_first=False, avoid_dead_ends=False, prune_bindings=False,
                    backtrack=False, retries=0, search_stuck=False,
-                   goal_agenda=False)
+                   goal_agenda=False, improve_plan=False)
         return replace(base, **changes)

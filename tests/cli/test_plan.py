@@ -2,13 +2,21 @@
 
 from __future__ import annotations
 
+import importlib.util
 import json
+import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
 from typer.testing import CliRunner
 
+from btplan.acting.offline import load
+from btplan.bt import SUCCESS
+from btplan.bt.formats import load_tree
 from btplan.cli import app
+from btplan.lang.generators import generate
+from btplan.worlds.symbolic import SymbolicWorld
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 PICK = str(DOMAINS / "pick_place.bt")
@@ -192,3 +200,52 @@ def test_progress_is_shown_once_a_second_after_the_first(
         "planning: 2 expansions, tree of 1 nodes, 0 conditions failing, 1 s",
         "planning: 4 expansions, tree of 1 nodes, 0 conditions failing, 2 s",
     ]
+
+
+def _validator() -> Any:
+    """bench/validate_plan.py, which shares no code with btplan."""
+    path = Path(__file__).resolve().parents[2] / "bench" / "validate_plan.py"
+    spec = importlib.util.spec_from_file_location("validate_plan", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["validate_plan"] = module  # its dataclasses look their module up
+    spec.loader.exec_module(module)
+    return module.validate
+
+
+def _gripper(tmp_path: Path) -> tuple[str, str]:
+    domain, problem = generate("gripper", "pddl", seed=0, balls=2)
+    (tmp_path / "d.pddl").write_text(domain)
+    (tmp_path / "p.pddl").write_text(problem)
+    return str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")
+
+
+def test_the_improved_plan_is_written_and_the_written_tree_executes_it(tmp_path: Path) -> None:
+    domain, problem = _gripper(tmp_path)
+    tree, plan = tmp_path / "tree.json", tmp_path / "plan"
+    result = runner.invoke(app, ["plan", domain, problem, "-o", str(tree), "--plan-out", str(plan)])
+    assert result.exit_code == 0, result.output
+    assert "plan improvement removed 2 of 7 steps" in result.stderr
+    steps = [s for s in plan.read_text().splitlines() if not s.startswith(";")]
+    assert len(steps) == 5
+    valid, reason, _ = _validator()(Path(domain).read_text(), Path(problem).read_text(),
+                                    plan.read_text())
+    assert valid, reason
+    task = load(domain, problem)
+    world = SymbolicWorld(task)
+    saved = load_tree(tree.read_text(), "json")
+    for _ in range(20):
+        if saved.tick(world) is SUCCESS:
+            break
+    assert [a.ipc() for a in world.executed] == steps
+
+
+def test_no_improve_and_paper_keep_the_backchained_plan(tmp_path: Path) -> None:
+    domain, problem = _gripper(tmp_path)
+    for flag in ("--no-improve", "--paper"):
+        plan = tmp_path / f"plan{flag}"
+        result = runner.invoke(app, ["plan", domain, problem, "-o", str(tmp_path / "t.json"),
+                                     "--plan-out", str(plan), flag])
+        assert result.exit_code == 0, result.output
+        assert "plan improvement" not in result.stderr
+    assert len((tmp_path / "plan--no-improve").read_text().splitlines()) == 7 + 1

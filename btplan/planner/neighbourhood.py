@@ -1,0 +1,293 @@
+"""The states around a plan's trajectory, for plan-neighbourhood search (improve.py).
+
+A task is packed as bit masks (btplan/planner/packed.py); the neighbourhood of a plan
+is every state within `depth` steps of a state the plan passes through, found breadth
+first and kept with its edges, within a budget of states, memory and time. The cheapest
+path from the initial state to a goal state through it is then a plan at least as good
+as the one it was grown around.
+"""
+
+from __future__ import annotations
+
+import heapq
+import time
+from array import array
+from collections.abc import Callable, Sequence
+
+from btplan.model import Atom, GroundAction, GroundLiteral
+from btplan.planner.packed import PackedActions, bits
+from btplan.records import record
+
+MAX_STATES = 50_000
+"""States one neighbourhood may hold, at most. On the training domains' small problems the
+neighbourhoods that shortened a plan held at most 31,000 states but one (hiking p03: two
+steps fewer at 163,000); a neighbourhood this full that finds nothing ends the search."""
+
+MAX_BYTES = 32 << 20
+"""Bytes the states of one neighbourhood may take: a state is an int of one bit per
+atom (a 100-block blocksworld's: 1.3 kB), plus what its dict entry and lists cost."""
+
+STATE_OVERHEAD = 120
+"""Bytes a state costs beyond its bits: the int's header, its dict entry, its lists."""
+
+EDGES_PER_STATE = 16
+"""Edges kept, on average, per state of the budget (8 bytes each, as arrays)."""
+
+CHECK_EVERY = 256
+"""States generated between two looks at the clock."""
+
+
+class OutOfTime(Exception):
+    """The deadline passed (or stop was asked for) while a neighbourhood was explored."""
+
+
+@record(frozen=True)
+class Limits:
+    """How far plan-neighbourhood search may go: states per neighbourhood, a deadline
+    (a time.perf_counter() value), and a callback that says to stop."""
+
+    max_states: int = MAX_STATES
+    """States one neighbourhood may hold (`states_for` bounds them by memory too)."""
+    deadline: float | None = None
+    stop: Callable[[], bool] | None = None
+
+    @staticmethod
+    def states_for(atoms: int) -> int:
+        """MAX_STATES, or fewer where states of `atoms` bits would take more than
+        MAX_BYTES."""
+        return min(MAX_STATES, MAX_BYTES // (atoms // 8 + STATE_OVERHEAD))
+
+    def passed(self) -> bool:
+        return ((self.deadline is not None and time.perf_counter() > self.deadline)
+                or (self.stop is not None and self.stop()))
+
+
+class PlanSpace:
+    """A task packed for improving its plans: start, goal test, actions that can run."""
+
+    def __init__(self, packed: PackedActions, start: frozenset[Atom],
+                 goal: Sequence[GroundLiteral]) -> None:
+        self.packed = packed
+        self.start = packed.encode(start)
+        test = packed.goal_test(goal, start)
+        self.positive, self.negative = (test[0], test[1]) if test is not None else (-1, 0)
+        self.reachable = test is not None
+        self.banned = packed.static_misses(start)
+        self.costs = [a.cost for a in packed.actions]
+        self.unit = len(set(self.costs)) <= 1
+        self.numbers = {a.key: i for i, a in enumerate(packed.actions)}
+        self.generator = Successors(packed, self.banned)
+
+    def encode(self, plan: Sequence[GroundAction]) -> list[int] | None:
+        """The plan as action numbers; None when an action is not among the packed ones."""
+        numbers = self.numbers
+        out = [numbers.get(a.key) for a in plan]
+        return None if any(n is None for n in out) else [n for n in out if n is not None]
+
+    def goal(self, state: int) -> bool:
+        return state & self.positive == self.positive and not state & self.negative
+
+    def runs(self, i: int, state: int) -> bool:
+        packed = self.packed
+        return (state & packed.pre_mask[i] == packed.pre_mask[i]
+                and not state & packed.neg_mask[i])
+
+    def trajectory(self, plan: Sequence[int]) -> list[int]:
+        """The states the plan passes through, the initial one first."""
+        states = [self.start]
+        for i in plan:
+            states.append(self.packed.apply(i, states[-1]))
+        return states
+
+    def valid(self, plan: Sequence[int]) -> bool:
+        state = self.start
+        for i in plan:
+            if i in self.banned or not self.runs(i, state):
+                return False
+            state = self.packed.apply(i, state)
+        return self.goal(state)
+
+    def measure(self, plan: Sequence[int]) -> tuple[float, int]:
+        """(cost, steps): what `improve` makes smaller, cost first."""
+        return sum(self.costs[i] for i in plan), len(plan)
+
+
+
+class Successors:
+    """The actions that can run in a state, found through two of their preconditions.
+
+    PackedActions.applicable looks at every action whose first precondition holds;
+    where many actions share it (a plane in a city, with every fuel level and
+    destination), most of them are tested in vain. Here each action hangs under its
+    least shared precondition, then under its next least shared one, so the actions
+    tested are those with two preconditions true.
+    """
+
+    def __init__(self, packed: PackedActions, banned: set[int]) -> None:
+        self.packed = packed
+        shared = [0] * len(packed.atoms)
+        for pre in packed.pre:
+            for atom in pre:
+                shared[atom] += 1
+        self.free: list[int] = []
+        self.table: list[dict[int, list[int]] | None] = [None] * len(packed.atoms)
+        for i, pre in enumerate(packed.pre):
+            if i in banned:
+                continue
+            if not pre:
+                self.free.append(i)
+                continue
+            first, *rest = sorted(pre, key=lambda atom: (shared[atom], atom))
+            groups = self.table[first]
+            if groups is None:
+                groups = self.table[first] = {}
+            groups.setdefault(rest[0] if rest else -1, []).append(i)
+        self.anchors = sum(1 << atom for atom, groups in enumerate(self.table) if groups)
+        """The atoms some action hangs under: the only set bits a state is read by."""
+
+    def successors(self, state: int) -> tuple[list[int], list[int]]:
+        """The actions that can run in `state`, and the states each leads to."""
+        packed = self.packed
+        pre_mask, neg_mask, add_mask, del_mask = (packed.pre_mask, packed.neg_mask,
+                                                  packed.add_mask, packed.del_mask)
+        actions = [i for i in self.free if not state & neg_mask[i]]
+        table = self.table
+        for first in bits(state & self.anchors):
+            groups = table[first]
+            assert groups is not None
+            for second, group in groups.items():
+                if second >= 0 and not state >> second & 1:
+                    continue
+                actions += [i for i in group
+                            if state & pre_mask[i] == pre_mask[i] and not state & neg_mask[i]]
+        return actions, [(state & ~del_mask[i]) | add_mask[i] for i in actions]
+
+
+class Neighbourhood:
+    """The states within `depth` steps of a trajectory, grown one step at a time.
+
+    States are numbered as they are found; each expanded state keeps its edges (the
+    actions that can run in it and the numbers of the states they lead to), so the
+    cheapest path is found without generating successors again.
+    """
+
+    def __init__(self, space: PlanSpace, trajectory: list[int], limits: Limits) -> None:
+        self.space = space
+        self.limits = limits
+        self.max_states = limits.max_states
+        self.ids: dict[int, int] = {}
+        self.states: list[int] = []
+        self.depths: list[int] = []
+        self.edges: dict[int, tuple[array[int], array[int]]] = {}
+        """For each expanded state: (actions, the states they lead to)."""
+        self.frontier = [self._number(state, 0) for state in dict.fromkeys(trajectory)]
+        self.depth = 0
+        self.full = False
+        """The state budget ran out: the neighbourhood cannot grow any more."""
+        self.stored = 0
+        """Edges kept."""
+        self._ticks = 0
+
+    def _number(self, state: int, depth: int) -> int:
+        number = self.ids[state] = len(self.states)
+        self.states.append(state)
+        self.depths.append(depth)
+        return number
+
+    @property
+    def closed(self) -> bool:
+        """No state outside the neighbourhood is reachable from it."""
+        return not self.frontier and not self.full
+
+    def grow(self) -> None:
+        """Add the states one step further from the trajectory."""
+        self.depth += 1
+        ids, states, layer = self.ids, self.states, []
+        successors = self.space.generator.successors
+        for number in self.frontier:
+            self._tick()
+            actions, children = successors(states[number])
+            if len(states) + len(children) > self.max_states \
+                    or self.stored > EDGES_PER_STATE * self.max_states:
+                self.full = True
+                self.frontier = []
+                return
+            targets = array("l")
+            for child in children:
+                known = ids.get(child)
+                if known is None:
+                    known = self._number(child, self.depth)
+                    layer.append(known)
+                targets.append(known)
+            self.edges[number] = (array("l", actions), targets)
+            self.stored += len(targets)
+        self.frontier = layer
+
+    def _tick(self) -> None:
+        self._ticks += 1
+        if self._ticks % CHECK_EVERY == 0 and self.limits.passed():
+            raise OutOfTime
+
+    def cheapest(self, bound: tuple[float, int]) -> list[int] | None:
+        """The cheapest plan through the neighbourhood's states, if better than `bound`."""
+        if self.space.unit:
+            return self._breadth_first(bound[1])
+        return self._dijkstra(bound)
+
+    def _breadth_first(self, steps: int) -> list[int] | None:
+        goal, states, edges = self.space.goal, self.states, self.edges
+        parents: dict[int, tuple[int, int] | None] = {0: None}
+        layer, length = [0], 0
+        while layer and length + 1 < steps:
+            length += 1
+            following = []
+            for number in layer:
+                found = edges.get(number)
+                if found is None:
+                    continue
+                self._tick()
+                for i, child in zip(*found, strict=True):
+                    if child not in parents:
+                        parents[child] = (number, i)
+                        if goal(states[child]):
+                            return _path(parents, child)
+                        following.append(child)
+            layer = following
+        return None
+
+    def _dijkstra(self, bound: tuple[float, int]) -> list[int] | None:
+        goal, states, edges, costs = self.space.goal, self.states, self.edges, self.space.costs
+        best: dict[int, tuple[float, int]] = {0: (0.0, 0)}
+        parents: dict[int, tuple[int, int] | None] = {0: None}
+        queue = [(0.0, 0, 0)]
+        done: set[int] = set()
+        while queue:
+            cost, steps, number = heapq.heappop(queue)
+            if number in done:
+                continue
+            done.add(number)
+            if (cost, steps) >= bound:
+                return None
+            if goal(states[number]):
+                return _path(parents, number)
+            found = edges.get(number)
+            if found is None:
+                continue
+            self._tick()
+            for i, child in zip(*found, strict=True):
+                key = (cost + costs[i], steps + 1)
+                if child not in done and key < best.get(child, bound):
+                    best[child], parents[child] = key, (number, i)
+                    heapq.heappush(queue, (key[0], key[1], child))
+        return None
+
+
+def _path(parents: dict[int, tuple[int, int] | None], number: int) -> list[int]:
+    steps: list[int] = []
+    link = parents[number]
+    while link is not None:
+        number, i = link
+        steps.append(i)
+        link = parents[number]
+    steps.reverse()
+    return steps
