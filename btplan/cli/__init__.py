@@ -25,10 +25,12 @@ def main() -> None:
     `btplan plan` (cli/planning.py turns it back on before planning).
     """
     gc.disable()
-    from btplan.cli.lean import main_fast
+    try:
+        from btplan.cli.lean import main_fast
 
-    main_fast()  # exits when it could run the command itself
-    gc.enable()
+        main_fast()  # exits when it could run the command itself
+    finally:  # a caller that catches the exit (a test) gets its collector back
+        gc.enable()
     from btplan.cli.edge import EXIT_BUG, report_bug
 
     only_the_command_asked_for(sys.argv[1:2])

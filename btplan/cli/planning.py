@@ -123,12 +123,14 @@ def collecting() -> Iterator[None]:
     if gc.isenabled():
         yield
         return
-    gc.set_threshold(PLANNING_GC_THRESHOLD, *gc.get_threshold()[1:])
+    before = gc.get_threshold()
+    gc.set_threshold(PLANNING_GC_THRESHOLD, *before[1:])
     gc.enable()
     try:
         yield
     finally:
         gc.disable()
+        gc.set_threshold(*before)
 
 
 class Progress:
