@@ -264,12 +264,17 @@ class SceneState:
         self.queries[key] = answer
 
     def path_blockers(self, traj: Trajectory, start: int = 0) -> set[str]:
-        """Cubes on the floor on the rest of the path, and obstacles still in hand (or
-        being let go of by a Place that has not ended)."""
+        """Cubes on the floor on the rest of the path, and, except on a path to a pose,
+        obstacles still in hand (or being let go of by a Place that has not ended)."""
         held = self.held
         found = {c for c in self.floor_cubes(traj.target, held)
                  if self.on_path(c, traj.path, start)}
-        found.update(c for c in (held, self.releasing) if c is not None and c in traj.clearing)
+        if traj.target not in self.poses:
+            # An obstacle in hand is not yet put aside. But on the way to a pose (a spot
+            # sampled to put an obstacle aside) it is being carried to where it goes: were
+            # it to block that path too, nothing could ever put it down.
+            found.update(c for c in (held, self.releasing)
+                         if c is not None and c in traj.clearing)
         return found
 
     def blockers(self, traj: Trajectory) -> set[str]:

@@ -186,6 +186,20 @@ def test_a_side_the_grasp_failed_from_is_not_offered_again(tmp_path: Path) -> No
         world.close()
 
 
+def test_an_obstacle_in_hand_blocks_every_way_but_the_one_to_put_it_aside(
+        room: PyBulletWorld) -> None:
+    from btplan.worlds.pybullet.paths import Trajectory
+
+    assert run(room, ("Pick", ("green",)))[0] is SUCCESS
+    path = ((room.state.base[0], room.state.base[1], 0.0), (1.5, 0.5, 0.0))
+    room.state.poses["pose1"] = (1.5, 0.5)
+    for target in ("blue", "goal"):
+        way = Trajectory(f"to_{target}", target, path, clearing={"green"})
+        assert room.state.path_blockers(way) == {"green"}  # not yet put aside
+    aside = Trajectory("to_pose1", "pose1", path, clearing={"green"})
+    assert room.state.path_blockers(aside) == set()  # carried to where it goes
+
+
 def test_place_puts_the_cube_down_where_on_reads_it(room: PyBulletWorld) -> None:
     assert run(room, ("Pick", ("green",)))[0] is SUCCESS
     assert run(room, ("Place", ("green", "goal")))[0] is SUCCESS
