@@ -41,9 +41,12 @@ PATIENCE_STATES, without a better plan. Each step further out multiplies the sta
 about the branching; on the training domains' small problems a better plan came one
 step beyond a neighbourhood that found none (zenotravel p01: 2,000 states, then 24,000),
 and mystery p01, whose neighbourhood holds every reachable state only at 131,000 states
-and finds nothing, stops at 3,000 instead of running into the time budget."""
+and finds nothing, stops early instead of running into the time budget. With 500 at
+least, the 15 training problems pyperplan also solves get the same plans as with 2,000,
+and the search's cost on the small ones, which decide the median run time, falls from
+20-35 ms to 7-10 ms (mystery p01, pipesworld p01 and p03)."""
 
-PATIENCE_STATES = 2_000
+PATIENCE_STATES = 500
 
 
 @record
