@@ -120,36 +120,11 @@ def test_pick_fails_on_a_cube_out_of_the_arms_reach(room: PyBulletWorld) -> None
     assert run(room, ("Pick", ("blue",)))[0] is FAILURE
 
 
-AGAINST_A_WALL = """
-[world]
-bounds = [-1.0, 3.0, -1.5, 1.5]
-
-[robot]
-start = [0.0, 0.0, 0.0]
-
+AGAINST_A_WALL = SMALL.replace("at = [0.6, 0.0]", "at = [0.875, 0.0]") + """
 [[wall]]
 name = "wall"
 center = [1.0, 0.0]
 size = [0.2, 2.0]
-
-[[region]]
-name = "goal"
-min = [-0.1, -0.9]
-max = [0.7, -0.3]
-
-[[cube]]
-name = "green"
-at = [0.875, 0.0]
-
-[[cube]]
-name = "blue"
-at = [0.0, 1.0]
-
-[[cube]]
-name = "red"
-
-[[cube]]
-name = "yellow"
 """
 
 
