@@ -11,15 +11,13 @@ from pathlib import Path
 
 import pytest
 
-import btplan.acting.offline as offline
+from btplan.acting import offline
 from btplan.acting.offline import load, plan
 from btplan.errors import NoAchieverError
-from btplan.lang import load as load_paths
-from btplan.lang.generators import generate
-from btplan.model import Atom, GroundLiteral, Task
+from btplan.model import GroundLiteral, Task
 from btplan.planner import AchieverIndex, PlannerOptions
 from btplan.planner.packed import bits
-from tests.planner.shapes import DOMAINS
+from tests.planner.shapes import DOMAINS, atom, generated
 from tests.planner.test_classic import validate
 
 TOGGLE = """
@@ -39,15 +37,7 @@ def toggle(tmp_path: Path, init: str) -> Task:
 
 
 def blocks(tmp_path: Path, count: int, seed: int) -> Task:
-    domain, problem = generate("blocksworld", seed=seed, blocks=count)
-    (tmp_path / "domain.pddl").write_text(domain)
-    (tmp_path / "problem.pddl").write_text(problem)
-    return load_paths([str(tmp_path / "domain.pddl"), str(tmp_path / "problem.pddl")])
-
-
-def atom(text: str) -> Atom:
-    name, _, rest = text.partition("(")
-    return Atom(name, tuple(a.strip() for a in rest.rstrip(")").split(",") if a.strip()))
+    return generated(tmp_path, "blocksworld", seed, blocks=count)
 
 
 def test_a_packed_action_deletes_before_it_adds_and_tests_negative_preconditions(

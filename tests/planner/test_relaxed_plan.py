@@ -10,28 +10,15 @@ Sussman's anomaly. Counts only, never times.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import pytest
 
 from btplan.acting.offline import load
-from btplan.lang import load as load_paths
-from btplan.lang.generators import generate
-from btplan.model import Atom, Task
+from btplan.model import Task
 from btplan.planner import AchieverIndex
 from btplan.planner.packed import INFINITE, PackedActions, bits
-from tests.planner.shapes import DOMAINS
-
-
-def generated(tmp_path: Path, name: str, seed: int, **size: int) -> Task:
-    domain, problem = generate(name, seed=seed, **size)
-    (tmp_path / "domain.pddl").write_text(domain)
-    (tmp_path / "problem.pddl").write_text(problem)
-    return load_paths([str(tmp_path / "domain.pddl"), str(tmp_path / "problem.pddl")])
-
-
-def atom(text: str) -> Atom:
-    name, _, rest = text.partition("(")
-    return Atom(name, tuple(a.strip() for a in rest.rstrip(")").split(",") if a.strip()))
+from tests.planner.shapes import DOMAINS, atom, generated
 
 
 def reference_h_ff(packed: PackedActions, true: list[int], goals: list[int]
@@ -149,13 +136,17 @@ def test_a_landmark_every_achiever_of_another_needs_is_ordered_before_it() -> No
         >> ids[atom("holding(a)")] & 1
 
 
-def test_a_landmark_reached_then_lost_counts_again_while_a_later_one_needs_it(
-        tmp_path: Path) -> None:
+def sussman_with_orders() -> tuple[Task, PackedActions, Any]:
+    """Sussman's anomaly, a search run begun with the landmark orders on."""
     task = load(str(DOMAINS / "planner_sussman.bt"))
     engine = AchieverIndex(task).subgoal_search
     engine.landmark_orders = True
-    packed = engine.packed
-    run = engine.begin(task.initial_state, task.goal_literals)
+    return task, engine.packed, engine.begin(task.initial_state, task.goal_literals)
+
+
+def test_a_landmark_reached_then_lost_counts_again_while_a_later_one_needs_it(
+        tmp_path: Path) -> None:
+    task, packed, run = sussman_with_orders()
     start = packed.encode(task.initial_state)
     passed = run.progress(run.reached[-1], start)
     base = run.count(start, passed)
@@ -173,11 +164,7 @@ def test_a_goal_reached_before_a_landmark_that_undoes_it_is_not_counted_yet(
         tmp_path: Path) -> None:
     # Sussman: on(a, b) and on(b, c). Stacking b on c needs b held, which b under a
     # forbids: on(b, c) comes before on(a, b), and on(a, b) reached first is no progress.
-    task = load(str(DOMAINS / "planner_sussman.bt"))
-    engine = AchieverIndex(task).subgoal_search
-    engine.landmark_orders = True
-    packed = engine.packed
-    run = engine.begin(task.initial_state, task.goal_literals)
+    task, packed, run = sussman_with_orders()
     ids = packed.ids
     a_on_b, b_on_c = ids[atom("on(a, b)")], ids[atom("on(b, c)")]
     before = dict(run.orders)[a_on_b]
