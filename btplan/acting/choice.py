@@ -34,7 +34,10 @@ def achievers_for(loop: LoopState, node: Node, literal: GroundLiteral,
     if loop.goal_credit:  # the goals their effects make true count (credit.py)
         achievers = credit_goals(achievers, literal, loop.task.goal_literals,
                                  index.relaxed, state)
-    kept = keep_reachable(achievers, needed_later(node), index.relaxed, state, width)
+    if len(achievers) < 2:  # what keep_reachable does then, without reading the tree
+        kept = list(achievers[:width])
+    else:
+        kept = keep_reachable(achievers, needed_later(node), index.relaxed, state, width)
     chosen = {a.key for a in kept}  # keys: comparing whole actions is slow
     return kept, [a for a in achievers if a.key not in chosen]
 
@@ -50,7 +53,7 @@ def allowed(loop: LoopState, achievers: list[GroundAction],
 def _non_circular(loop: LoopState, achievers: list[GroundAction], node: Node,
                   literal: GroundLiteral) -> list[GroundAction]:
     """Drop circular achievers (with refine_more), remembering when that left none."""
-    if not loop.options.refine_more:
+    if not loop.options.refine_more or not achievers:
         return achievers
     kept = non_circular(achievers, pursued(node))
     if achievers and not kept:

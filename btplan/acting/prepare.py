@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 import weakref
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING
 
 from btplan.bt import Composite, Fallback, Node
@@ -42,12 +42,22 @@ _PLANS: weakref.WeakKeyDictionary[RelaxedModel, RelaxedPlans] = weakref.WeakKeyD
 class RelaxedPlans:
     """The relaxed plan of the last state asked about, its steps by the false atoms
     they need: the expansions of one tick (up to a dozen at the start of a run) share
-    their state, and each asks only about the atoms its achiever adds."""
+    their state, and each asks only about the atoms its achiever adds. Each atom's
+    producers are taken apart once (cost, positive preconditions): the relaxed plan of
+    every new state reads them again."""
 
     def __init__(self, relaxed: RelaxedModel) -> None:
         self.relaxed = relaxed
         self._key: tuple[frozenset[Atom], tuple[Atom, ...]] | None = None
         self._needing: dict[Atom, list[GroundAction]] = {}
+        self._made_by: dict[Atom, list[Producer]] = {}
+
+    def producers(self, atom: Atom) -> list[Producer]:
+        """The relaxed model's producers of `atom`, in its order, taken apart."""
+        found = self._made_by.get(atom)
+        if found is None:
+            found = self._made_by[atom] = producers(self.relaxed, atom)
+        return found
 
     def needing(self, state: frozenset[Atom], goals: Sequence[Atom]
                 ) -> dict[Atom, list[GroundAction]]:
@@ -55,12 +65,21 @@ class RelaxedPlans:
         key = (state, tuple(goals))
         if key != self._key:
             needing: dict[Atom, list[GroundAction]] = {}
-            for step in relaxed_plan(self.relaxed, state, goals):
-                for p in step.preconditions:
-                    if p.positive and p.atom not in state:
-                        needing.setdefault(p.atom, []).append(step)
+            for step, needs in _plan(self.relaxed.costs(state), state, goals, self.producers):
+                for atom in needs:
+                    if atom not in state:
+                        needing.setdefault(atom, []).append(step)
             self._key, self._needing = key, needing
         return self._needing
+
+
+Producer = tuple[GroundAction, float, tuple[Atom, ...]]
+"""A producer, its cost and its positive preconditions (in order, repeats kept)."""
+
+
+def producers(relaxed: RelaxedModel, atom: Atom) -> list[Producer]:
+    return [(a, a.cost, tuple(p.atom for p in a.preconditions if p.positive))
+            for a in relaxed.producers(atom)]
 
 
 def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
@@ -75,9 +94,12 @@ def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
     plans = _PLANS.get(relaxed)
     if plans is None:
         plans = _PLANS[relaxed] = RelaxedPlans(relaxed)
+    found = prepared(action, condition, loop.task.goal_literals, plans, loop.index.mutexes,
+                     state)
+    if not found:
+        return []
     taken = pursued(subtree.children[0])
-    extra = [(c, m) for c, m in prepared(action, condition, loop.task.goal_literals, plans,
-                                         loop.index.mutexes, state) if c not in taken]
+    extra = [(c, m) for c, m in found if c not in taken]
     wanted, skips = insert_before_action(subtree, extra, loop.task, action)
     loop.never_expand(skips)
     loop.optional.update(wanted)
@@ -100,9 +122,17 @@ def relaxed_plan(relaxed: RelaxedModel, state: frozenset[Atom],
     """The steps of a relaxed plan for `goals` from `state`: for each atom needed and
     false, its cheapest producer by h_add (the first on ties), and that producer's
     preconditions in turn."""
-    cost = relaxed.costs(state)
+    return [step for step, _ in _plan(relaxed.costs(state), state, goals,
+                                      lambda atom: producers(relaxed, atom))]
+
+
+def _plan(cost: dict[Atom, float], state: frozenset[Atom], goals: Sequence[Atom],
+          made_by: Callable[[Atom], list[Producer]]
+          ) -> list[tuple[GroundAction, tuple[Atom, ...]]]:
+    """relaxed_plan's steps, each with its positive preconditions, from the h_add
+    costs of `state` and each atom's producers."""
     inf = math.inf
-    chosen: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
+    chosen: dict[tuple[str, tuple[str, ...]], tuple[GroundAction, tuple[Atom, ...]]] = {}
     seen: set[Atom] = set()
     todo = [g for g in goals if g not in state]
     while todo:
@@ -111,19 +141,19 @@ def relaxed_plan(relaxed: RelaxedModel, state: frozenset[Atom],
             continue
         seen.add(atom)
         best: GroundAction | None = None
+        best_needs: tuple[Atom, ...] = ()
         best_cost = inf
         floor = cost.get(atom, inf)  # h_add's own value: no producer does better
-        for producer in relaxed.producers(atom):
-            value = producer.cost + sum(cost.get(p.atom, inf) for p in producer.preconditions
-                                        if p.positive)
+        for producer, own, needs in made_by(atom):
+            value = own + sum([cost.get(p, inf) for p in needs])
             if value < best_cost:  # ties: the first, in the model's fixed order
-                best, best_cost = producer, value
+                best, best_needs, best_cost = producer, needs, value
                 if value <= floor:
                     break
         if best is None:
             continue
-        chosen.setdefault(best.key, best)
-        todo.extend(p.atom for p in best.preconditions if p.positive)
+        chosen.setdefault(best.key, (best, best_needs))
+        todo.extend(best_needs)
     return list(chosen.values())
 
 
@@ -142,7 +172,6 @@ def prepared(action: GroundAction, condition: GroundLiteral,
         return []
     needs = [p for p in action.preconditions if p.positive]
     out: dict[GroundLiteral, GroundAction] = {}
-    relaxed = plans.relaxed
     for step in enabled.values():
         for pre in step.preconditions:
             if not pre.positive:
@@ -153,17 +182,17 @@ def prepared(action: GroundAction, condition: GroundLiteral,
             if any(mutexes.exclusive(pre, need) for need in (*needs, condition)
                    if need.positive):
                 continue
-            maker = _one_step(pre.atom, relaxed, state)
+            maker = _one_step(plans.producers(pre.atom), state)
             if maker is not None:
                 out[pre] = maker
     return list(out.items())
 
 
-def _one_step(atom: Atom, relaxed: RelaxedModel, state: frozenset[Atom]
-              ) -> GroundAction | None:
-    """A grounding that adds `atom` and can run in `state` (positive preconditions)."""
-    for producer in relaxed.producers(atom):
-        if all(p.atom in state for p in producer.preconditions if p.positive):
+def _one_step(made_by: list[Producer], state: frozenset[Atom]) -> GroundAction | None:
+    """A grounding among an atom's producers that can run in `state` (positive
+    preconditions)."""
+    for producer, _, needs in made_by:
+        if all(p in state for p in needs):
             return producer
     return None
 

@@ -228,7 +228,8 @@ class AchieverIndex:
         scored: list[tuple[tuple[float, int, str], GroundAction]] = []
         for action in candidates:
             profile = self._profile(action)
-            if drop_impossible and self._impossible(action):
+            if drop_impossible and (profile.impossible if profile.impossible is not None
+                                    else self._impossible(action)):
                 continue
             missing = [a for a in profile.positive if a not in state]
             failing = len(missing)

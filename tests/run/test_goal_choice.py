@@ -10,11 +10,18 @@ from btplan import run
 from btplan.acting import ACTING_OPTIONS
 from btplan.acting.credit import credit_goals
 from btplan.acting.offline import load
-from btplan.acting.prepare import RelaxedPlans, give_up, insert_before_action, prepared
+from btplan.acting.prepare import (
+    RelaxedPlans,
+    give_up,
+    insert_before_action,
+    prepared,
+    relaxed_plan,
+)
 from btplan.bt import Action, Fallback, Sequence
 from btplan.model import Atom, GroundLiteral, Task
 from btplan.planner import AchieverIndex
 from btplan.planner.expand import atomic_bt, condition_node
+from btplan.planner.heuristic import RelaxedModel
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 OPTIONS = replace(ACTING_OPTIONS, expansions_per_tick=64)
@@ -146,3 +153,36 @@ def test_a_prepared_condition_is_guarded_and_given_up_whole(tmp_path: Path) -> N
     assert not give_up(alternative.children[0])  # a precondition of its own: kept
     assert give_up(wanted[0])
     assert holder not in alternative.children and len(alternative.children) == 4
+
+
+def _needing_uncached(relaxed: RelaxedModel, state: frozenset[Atom],
+                      goals: list[Atom]) -> dict[Atom, list[str]]:
+    needing: dict[Atom, list[str]] = {}
+    for step in relaxed_plan(relaxed, state, goals):
+        for p in step.preconditions:
+            if p.positive and p.atom not in state:
+                needing.setdefault(p.atom, []).append(str(step))
+    return needing
+
+
+def test_the_kept_relaxed_plan_and_producers_match_computing_them_afresh(tmp_path: Path) -> None:
+    """RelaxedPlans keeps each atom's producers taken apart and the last state's plan:
+    along a run of the detour, in every state met (and back to an earlier one), what it
+    answers is what the relaxed model gives when asked afresh."""
+    task = task_of(tmp_path, "blocksworld.bt", DETOUR, "detour")
+    index = _index(task)
+    plans = RelaxedPlans(index.relaxed)
+    goals = [g.atom for g in task.goal_literals]
+    states = [task.initial_state]
+    for name in ("unstack(b2, b5)", "put_down(b2)", "unstack(b4, b3)"):
+        step = next(a for a in index.relaxed.actions if str(a) == name)
+        states.append(step.apply(states[-1]))
+    asked = 0
+    for state in [*states, states[0], states[0]]:
+        got = {atom: [str(s) for s in steps]
+               for atom, steps in plans.needing(state, goals).items()}
+        assert got == _needing_uncached(index.relaxed, state, goals)
+        asked += bool(got)
+        for atom in got:
+            assert [p for p, _, _ in plans.producers(atom)] == index.relaxed.producers(atom)
+    assert asked >= 3  # the plan had steps to compare in most states
