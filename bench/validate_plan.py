@@ -196,6 +196,10 @@ def validate(domain_text: str, problem_text: str, plan_text: str) -> tuple[bool,
 
 
 def main() -> None:
+    if len(sys.argv) != 4 or sys.argv[1] in ("-h", "--help"):
+        print("usage: validate_plan.py DOMAIN.pddl PROBLEM.pddl PLAN\n"
+              "Exit 0 when the plan is valid, 1 when it is not.", file=sys.stderr)
+        sys.exit(0 if sys.argv[1:2] in (["-h"], ["--help"]) else 2)
     domain, problem, plan = (open(p, encoding="utf-8").read() for p in sys.argv[1:4])
     ok, reason, cost = validate(domain, problem, plan)
     print(f"{reason}; cost {cost:g}")
