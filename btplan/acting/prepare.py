@@ -28,9 +28,8 @@ from typing import TYPE_CHECKING
 
 from btplan.bt import Composite, Fallback, Node
 from btplan.model import Atom, GroundAction, GroundLiteral, Task
-from btplan.planner.expand import condition_node
+from btplan.planner.expand import condition_node, pursued
 from btplan.planner.heuristic import RelaxedModel
-from btplan.planner.expand import pursued
 from btplan.planner.mutex import Mutexes
 
 if TYPE_CHECKING:

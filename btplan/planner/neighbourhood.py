@@ -116,11 +116,13 @@ class PlanSpace:
 class Successors:
     """The actions that can run in a state, found through two of their preconditions.
 
-    PackedActions.applicable looks at every action whose first precondition holds;
-    where many actions share it (a plane in a city, with every fuel level and
-    destination), most of them are tested in vain. Here each action hangs under its
-    least shared precondition, then under its next least shared one, so the actions
-    tested are those with two preconditions true.
+    PackedActions.applicable serves the search, which asks about one state after a
+    close neighbour: it keeps each action's count of preconditions still false for the
+    last state asked and updates it by the atoms that differ. A neighbourhood is grown
+    breadth first, over states far apart, so here each action hangs under its least
+    shared precondition, then under its next least shared one, and the actions tested
+    are those with two preconditions true (a plane in a city, with every fuel level and
+    destination, is not tested in vain); `banned` actions are left out.
     """
 
     def __init__(self, packed: PackedActions, banned: set[int]) -> None:
