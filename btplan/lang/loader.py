@@ -13,9 +13,10 @@ from pathlib import Path
 from btplan.errors import InputError, Span
 from btplan.io import STDIO, read_text
 from btplan.lang.names import check_unique, suggest
+from btplan.lang.problem_check import build_problem
 from btplan.lang.report import Report
 from btplan.lang.syntax import DomainSyntax, ProblemSyntax
-from btplan.lang.validate import build_domain, build_problem
+from btplan.lang.validate import build_domain
 from btplan.model import ROOT_TYPE, Domain, Problem, Task, TypedName
 from btplan.records import record
 

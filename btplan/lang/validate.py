@@ -1,8 +1,9 @@
-"""Check located syntax and build the frozen models, pointing at every mistake.
+"""Check a domain's located syntax and build its frozen model, pointing at every mistake.
 
 Both readers (.bt and PDDL) end here, so both languages get the same checks and the
 same messages: unknown names with a "did you mean", wrong arity, wrong types, unbound
-variables, duplicates, and postconditions that contradict each other.
+variables, duplicates, and postconditions that contradict each other. Problems are
+checked against the built domain in `problem_check`, with the helpers shared here.
 """
 
 from __future__ import annotations
@@ -18,7 +19,6 @@ from btplan.lang.syntax import (
     Name,
     Number,
     PredicateSyntax,
-    ProblemSyntax,
     TypedSyntax,
 )
 from btplan.lang.types import TypeTable
@@ -28,11 +28,9 @@ from btplan.model import (
     WILDCARD,
     ActionTemplate,
     Domain,
-    FunctionValue,
     Literal,
     Parameter,
     Predicate,
-    Problem,
     TypedName,
 )
 
@@ -54,7 +52,7 @@ def build_domain(syntax: DomainSyntax, report: Report | None = None) -> Domain:
     own = report is None
     report = report or Report()
     types = TypeTable.from_syntax(syntax.types)  # everything else depends on the types
-    constants = _typed_names(syntax.constants, types, "constant", report)
+    constants = typed_names(syntax.constants, types, "constant", report)
     constant_types = {c.name: c.type for c in constants}
     predicates = _predicates(syntax, types, report)
     functions = _predicates(syntax, types, report, syntax.functions)
@@ -77,7 +75,7 @@ def build_domain(syntax: DomainSyntax, report: Report | None = None) -> Domain:
     )
 
 
-def _typed_names(
+def typed_names(
     entries: tuple[TypedSyntax, ...], types: TypeTable, what: str, report: Report
 ) -> tuple[TypedName, ...]:
     check_unique((e.name for e in entries), what, report)
@@ -147,13 +145,13 @@ def _action(
         terms = _LiteralChecker(types, functions or {}, scope, syntax.name.text, set(constants))
         cost_term = report.attempt(terms.check, syntax.cost_term, "cost")
     report.attempt(
-        _check_contradictions,
+        check_contradictions,
         syntax.post,
         "postconditions",
         "this action would make it both true and false",
     )
     report.attempt(
-        _check_contradictions, syntax.pre, "preconditions", "this action could never run"
+        check_contradictions, syntax.pre, "preconditions", "this action could never run"
     )
     return ActionTemplate(
         name=syntax.name.text,
@@ -189,7 +187,7 @@ def _duration(number: Number | None) -> int:
     return int(number.text)
 
 
-def _written(literal: Literal) -> str:
+def written(literal: Literal) -> str:
     """The literal as btplan's language writes it. Only messages need the writers, so
     they are imported here: a well-formed `btplan plan` starts without them."""
     from btplan.lang.writers import bt_literal
@@ -197,7 +195,7 @@ def _written(literal: Literal) -> str:
     return bt_literal(literal)
 
 
-def _check_contradictions(literals: tuple[LiteralSyntax, ...], what: str, why: str) -> None:
+def check_contradictions(literals: tuple[LiteralSyntax, ...], what: str, why: str) -> None:
     seen: dict[tuple[str, tuple[str, ...]], LiteralSyntax] = {}
     for lit in literals:
         key = (lit.predicate.text, tuple(a.text for a in lit.args))
@@ -205,7 +203,7 @@ def _check_contradictions(literals: tuple[LiteralSyntax, ...], what: str, why: s
         if other is not None and other.positive != lit.positive:
             raise lit.at.error(
                 f"contradictory {what}: "
-                f"'{_written(other.literal())}' and '{_written(lit.literal())}'",
+                f"'{written(other.literal())}' and '{written(lit.literal())}'",
                 why,
             )
         seen[key] = lit
@@ -234,7 +232,7 @@ class _LiteralChecker:
             from btplan.lang.writers import pddl_literal
 
             return pddl_literal(literal, frozenset(set(self.scope) - self.constants))
-        return _written(literal)
+        return written(literal)
 
     def _variable(self, name: str) -> str:
         return f"?{name}" if self.pddl and name in self.scope and name not in self.constants \
@@ -315,123 +313,3 @@ def check_predicate(lit: LiteralSyntax, predicates: Mapping[str, Predicate]) -> 
             f"declared as {name}({params})",
         )
     return predicate
-
-
-# --- problem --------------------------------------------------------------------------
-
-
-def build_problem(syntax: ProblemSyntax, domain: Domain, report: Report | None = None) -> Problem:
-    """Validate a problem against its (already valid) domain and build its model."""
-    own = report is None
-    report = report or Report()
-    if syntax.domain.text != domain.name:
-        report.add(
-            syntax.domain.at.error(
-                f"problem '{syntax.name.text}' is for domain '{syntax.domain.text}', "
-                f"but the domain given is '{domain.name}'"
-            )
-        )
-    types = TypeTable.from_domain(domain)
-    objects = _typed_names(syntax.objects, types, "object", report)
-    constants = {c.name for c in domain.constants}
-    for entry in syntax.objects:
-        if entry.name.text in constants:
-            report.add(
-                entry.name.at.error(
-                    f"'{entry.name.text}' is already a constant of domain '{domain.name}'"
-                )
-            )
-    known = {c.name: c.type for c in domain.constants}
-    known.update({o.name: o.type for o in objects})
-    # objects of an unknown type were reported once; their facts are not checked for type
-    unknown = {o.name.text for o in syntax.objects if o.type and o.type.text not in types.parents}
-    facts = _FactChecker(types, domain.predicate_map, known, unknown)
-    init = []
-    for lit in syntax.init:
-        if not lit.positive:
-            report.add(
-                lit.at.error(
-                    "initial facts are positive",
-                    "leave out what is false: it is false by default",
-                )
-            )
-        else:
-            init.append(report.attempt(facts.check, lit, "initial fact"))
-    goal = [report.attempt(facts.check, lit, "goal") for lit in syntax.goal]
-    terms = _FactChecker(types, {f.name: f for f in domain.functions}, known, unknown)
-    values = []
-    for term, number in syntax.values:
-        checked = report.attempt(terms.check, term, "function value")
-        if checked is not None:
-            values.append(FunctionValue(
-                function=checked.predicate, args=checked.args, value=float(number.text)))
-    report.attempt(_check_contradictions, syntax.goal, "goal conditions", "no state satisfies both")
-    _warn_unreachable(syntax.goal, init, domain, report)
-    if own:
-        report.raise_errors()
-    return Problem(
-        name=syntax.name.text,
-        domain=syntax.domain.text,
-        objects=objects,
-        init=tuple(dict.fromkeys(x for x in init if x is not None)),
-        goal=tuple(x for x in goal if x is not None),
-        values=tuple(values),
-    )
-
-
-def _warn_unreachable(
-    goal: tuple[LiteralSyntax, ...], init: list[Literal | None], domain: Domain, report: Report
-) -> None:
-    """Warn about goals on static predicates that are false from the start.
-
-    No action changes such a predicate, so no plan can reach them; this is legal input,
-    but planning is certain to fail, and the place of the goal is known only here.
-    """
-    facts = {(x.predicate, x.args) for x in init if x is not None}
-    for lit in goal:
-        name = lit.predicate.text
-        if name not in domain.predicate_map or name in domain.changed_predicates:
-            continue
-        holds = (name, tuple(a.text for a in lit.args)) in facts
-        if holds != lit.positive:
-            report.warn(
-                lit.at.error(
-                    f"the goal '{_written(lit.literal())}' can never hold",
-                    f"no action changes '{name}', and it is "
-                    f"{'false' if lit.positive else 'true'} initially",
-                )
-            )
-
-
-class _FactChecker:
-    """Checks ground literals (initial facts, goals) against objects and constants."""
-
-    def __init__(
-        self,
-        types: TypeTable,
-        predicates: Mapping[str, Predicate],
-        known: Mapping[str, str],
-        untyped: set[str],
-    ) -> None:
-        self.types = types
-        self.predicates = predicates
-        self.known = known
-        self.untyped = untyped
-
-    def check(self, lit: LiteralSyntax, what: str) -> Literal:
-        if lit.is_equality:
-            raise lit.at.error(f"an equality cannot be {article(what)}")
-        predicate = check_predicate(lit, self.predicates)
-        for arg, param in zip(lit.args, predicate.parameters):
-            if arg.text not in self.known:
-                raise arg.at.error(
-                    f"unknown object '{arg.text}' in {article(what)}",
-                    suggest(arg.text, self.known) or "declare it under 'objects'",
-                )
-            arg_type = self.known[arg.text]
-            if arg.text not in self.untyped and not self.types.is_subtype(arg_type, param.type):
-                raise arg.at.error(
-                    f"'{arg.text}' is {article(arg_type)}, "
-                    f"but {predicate.name} expects {article(param.type)} here"
-                )
-        return lit.literal()

@@ -15,8 +15,9 @@ from btplan.errors import InputError
 from btplan.lang import parse_bt
 from btplan.lang.generators import generate
 from btplan.lang.pddl_reader import read_pddl
+from btplan.lang.problem_check import build_problem
 from btplan.lang.syntax import DomainSyntax, ProblemSyntax
-from btplan.lang.validate import build_domain, build_problem
+from btplan.lang.validate import build_domain
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 BT_SEEDS = [(DOMAINS / n).read_text() for n in ("pick_place.bt", "blocksworld.bt")]
