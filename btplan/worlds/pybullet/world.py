@@ -31,7 +31,7 @@ class PyBulletWorld(SkillWorld[SceneState, Conditions]):
     def __init__(self, task: Task, scene: Scene, seed: int = 0, gui: bool = False,
                  verbose: bool = False, agents: SceneAgents | None = None) -> None:
         motion.set_log_level(verbose)
-        motion.seed_rng(seed + 1)  # OMPL refuses a zero seed
+        motion.seed_rng(seed)
         self.scene = scene
         self.state = SceneState(task, scene, gui)
         self.routes = Routes(self.state)

@@ -281,7 +281,7 @@ def test_ompl_plans_an_arm_motion_in_joint_space_around_a_forbidden_box() -> Non
         return not (abs(q[0]) < 0.3 and abs(q[1]) < 0.5)  # the first joints must swing round
 
     assert not straight_free(start, goal, free)
-    plan = motion.plan_joints(start, goal, free, LOWER, UPPER, budget=1.0)
+    plan = motion.plan_joints(start, goal, free, LOWER, UPPER, iterations=5000)
     assert plan is not None and plan.path[0] == start and plan.path[-1] == goal
     assert all(free(q) for q in plan.path)
     assert all(straight_free(a, b, free) for a, b in zip(plan.path, plan.path[1:]))
