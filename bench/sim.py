@@ -1,9 +1,9 @@
 """Simulated seconds per wall second of the PyBullet Youbot run, and where the time goes.
 
 Runs the default scene (domains/scenes/youbot.toml) headless, with physics on, through
-Algorithm 1 with the scene's agents, once per seed, each seed in a fresh process (OMPL's
-seed is process-wide). Reports per seed: ticks, simulated time, wall time of the run
-(world loading excluded), sim/wall, the CPU time of the run and sim/CPU (what the run
+Algorithm 1 with the scene's agents, once per seed, each seed in a fresh process (so
+that no seed's timings include another's imports or caches). Reports per seed: ticks,
+simulated time, wall time of the run (world loading excluded), sim/wall, the CPU time of the run and sim/CPU (what the run
 costs when the machine is shared: wall time then includes waiting for a core), and the
 wall time spent stepping the physics, in IK,
 in arm planning (collision checks and joint-space OMPL), in base OMPL solves and in

@@ -179,17 +179,25 @@ def test_a_scenario_the_simulator_cannot_serve_is_refused_before_any_run(
 
 
 @pytest.mark.slow
-def test_a_pybullet_sweep_shoves_cubes_in_the_youbot_scene(tmp_path: Path) -> None:
+def test_a_pybullet_sweep_gives_the_same_rows_on_one_or_two_workers(tmp_path: Path) -> None:
+    """OMPL is seeded per run and bounded by iterations: with `-j 1` both seeds run in this
+    process one after the other (after whatever this process planned before), with
+    `-j 2` each in a fresh worker, and the rows are the same."""
     pytest.importorskip("pybullet")
-    out = tmp_path / "youbot.csv"
-    result = runner.invoke(app, ["sweep", str(DOMAINS / "youbot.bt"), "--sim", "pybullet",
-                                 "--scenario", "shove", "--seeds", "1", "--rates", "0.01",
-                                 "--method", "btplan", "-j", "1", "-o", str(out), "-q"])
-    assert result.exit_code == 0, result.output
-    [only] = read_rows(str(out))
-    # Whether it reaches the goal may vary: OMPL and the arm plan to wall-clock budgets.
-    assert not only["error"] and only["planner_calls"] > 0 and only["reason"]
-    assert only["scenario"] == "shove" and only["disturbances"] > 0 and only["ticks"] > 0
+
+    def sweep(jobs: int) -> list[Row]:
+        out = tmp_path / f"youbot{jobs}.csv"
+        result = runner.invoke(app, ["sweep", str(DOMAINS / "youbot.bt"), "--sim", "pybullet",
+                                     "--scenario", "shove", "--seeds", "0:2", "--rates",
+                                     "0.02", "--method", "btplan", "--max-ticks", "300",
+                                     "-j", str(jobs), "-o", str(out), "-q"])
+        assert result.exit_code == 0, result.output
+        return read_rows(str(out))
+
+    one = sweep(1)
+    assert untimed(sweep(2)) == untimed(one)
+    assert not any(r["error"] for r in one) and all(r["planner_calls"] > 0 for r in one)
+    assert all(r["scenario"] == "shove" and r["disturbances"] > 0 for r in one)
 
 
 def test_a_run_past_the_timeout_becomes_an_error_row(

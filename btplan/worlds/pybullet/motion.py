@@ -44,16 +44,47 @@ def release() -> None:
     gc.collect()
 
 
-_seeded: list[int] = []
-"""The seed given to OMPL in this process. OMPL's seed is process-wide and only the first
-one counts (later calls log an error and change nothing), so it is given once."""
-
-
 def seed_rng(seed: int) -> None:
-    """Seed OMPL's sampler for this process: the first world opened fixes the sequence."""
-    if not _seeded:
-        _ompl("util").RNG.setSeed(seed)
-        _seeded.append(seed)
+    """Seed OMPL for one run, so that the run's motion plans depend on its seed alone.
+
+    OMPL draws the seed of every generator it creates (each sampler, nearest-neighbour
+    structure and path simplifier of each solve) from one process-wide stream. Seeding
+    that stream again when a world opens makes a run's plans independent of the runs
+    this process did before, so a sweep's rows do not depend on which worker ran which
+    seed, or in what order. OMPL reseeds the stream even after generators were made
+    (tests/worlds/pybullet/test_motion.py holds it to that), but it logs an error saying
+    it cannot tell whether earlier generators are still in use: none are, since every
+    solve below makes its own, so the message is silenced for the call.
+    """
+    ou = _ompl("util")
+    level = ou.getLogLevel()
+    ou.setLogLevel(ou.LogLevel.LOG_NONE)
+    try:
+        ou.RNG.setSeed(seed + 1)  # OMPL takes 0 for "no seed"
+    finally:
+        ou.setLogLevel(level)
+
+
+class Work:
+    """A planner's termination condition that counts its checks instead of the clock.
+
+    RRTConnect checks the condition once per iteration (one sample, one extension and
+    one connection attempt), and the path simplifier once per round of shortcuts, so a
+    limit on checks is a limit on work: the same question gets the same answer however
+    loaded the machine is, where a time budget gave different paths, and sometimes
+    none, from one run of a seed to the next.
+    """
+
+    def __init__(self, limit: int) -> None:
+        self.limit = limit
+        self.used = 0
+
+    def __call__(self) -> bool:
+        self.used += 1
+        return self.used > self.limit
+
+    def condition(self) -> Any:
+        return _ompl("base").PlannerTerminationCondition(self)
 
 
 def ompl_yaw(yaw: float) -> float:
@@ -68,14 +99,14 @@ def plan_se2(
     goal: Pose2,
     valid: Callable[[float, float], bool],
     bounds: tuple[float, float, float, float],
-    budget: float = 0.5,
+    iterations: int = 2000,
     step: float = 0.05,
 ) -> PlanResult | None:
     """Plan from `start` to `goal` with RRTConnect, simplify, interpolate every `step` metres.
 
     `valid(x, y)` says whether the robot's footprint fits at (x, y); the footprint is a disc,
     so the yaw does not change validity and the heading along the path is computed after.
-    Returns None when no path is found within `budget` seconds.
+    Returns None when no path is found within `iterations` of RRTConnect's.
     """
     ob, og = _ompl("base"), _ompl("geometric")
 
@@ -101,12 +132,12 @@ def plan_se2(
         state.setYaw(ompl_yaw(pose[2]))
     setup.setStartAndGoalStates(s, g)
     setup.setPlanner(og.RRTConnect(info))
-    began = time.perf_counter()
+    began, work = time.perf_counter(), Work(iterations)
     try:
-        solved = bool(setup.solve(budget)) and setup.haveExactSolutionPath()
+        solved = bool(setup.solve(work.condition())) and setup.haveExactSolutionPath()
         if not solved:
             return None
-        setup.simplifySolution()
+        setup.simplifySolution(Work(SIMPLIFY_ROUNDS).condition())
         raw = setup.getSolutionPath()
         points = [(raw.getState(i).getX(), raw.getState(i).getY()) for i in range(raw.getStateCount())]
         return PlanResult(densify(points, start, goal, step), time.perf_counter() - began)
@@ -141,9 +172,13 @@ def path_length(path: tuple[Pose2, ...]) -> float:
     return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in itertools.pairwise(path))
 
 
-SIMPLIFY_SECONDS = 0.1
-"""The most a joint-space path may be shortened for: each shortcut tried is checked
-for collision along its length, and the arm's checks are slow."""
+SIMPLIFY_ROUNDS = 1000
+"""The most checks of its termination condition a path's simplification may make."""
+
+ARM_SIMPLIFY_ROUNDS = 15
+"""The same for a joint-space path: each shortcut tried is checked for collision along
+its length, and the arm's checks are slow (a round takes ~7 ms in the Youbot scene and
+~15 ms in the assembly cell)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -160,12 +195,12 @@ def plan_joints(
     valid: Callable[[tuple[float, ...]], bool],
     lower: tuple[float, ...],
     upper: tuple[float, ...],
-    budget: float = 0.5,
+    iterations: int = 2000,
 ) -> JointPlan | None:
     """Plan an arm motion in joint space (RealVectorStateSpace, RRTConnect, simplified).
 
     Used where the straight joint move collides. `valid(q)` is the arm's collision check.
-    Returns None when no path is found within `budget` seconds.
+    Returns None when no path is found within `iterations` of RRTConnect's.
     """
     ob, og = _ompl("base"), _ompl("geometric")
     n = len(start)
@@ -188,11 +223,11 @@ def plan_joints(
         s[i], g[i] = start[i], goal[i]
     setup.setStartAndGoalStates(s, g)
     setup.setPlanner(og.RRTConnect(info))
-    began = time.perf_counter()
+    began, work = time.perf_counter(), Work(iterations)
     try:
-        if not (bool(setup.solve(budget)) and setup.haveExactSolutionPath()):
+        if not (bool(setup.solve(work.condition())) and setup.haveExactSolutionPath()):
             return None
-        setup.simplifySolution(SIMPLIFY_SECONDS)  # shortcuts cost collision checks
+        setup.simplifySolution(Work(ARM_SIMPLIFY_ROUNDS).condition())
         raw = setup.getSolutionPath()
         points = tuple(tuple(raw.getState(k)[i] for i in range(n))
                        for k in range(raw.getStateCount()))

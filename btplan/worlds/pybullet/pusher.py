@@ -32,6 +32,8 @@ STALL_SECONDS = 0.6   # a push that gains less than STALL_GAIN in this long is g
 STALL_GAIN = 0.01
 MASS = 3.0
 PLAY = 0.006          # m between a cube and each side of the pocket
+PUSHER_ITERATIONS = 100  # RRTConnect iterations for the pusher's way in or out (~5 ms each;
+                         # a way is found in a few, or the pusher drives straight)
 Job = tuple[str, str, Point | None, bool]
 """An event's name, its cube, where to push it (None: out of the scene) and whether the
 cube leaves the scene at the end."""
@@ -173,7 +175,7 @@ class Pusher:
                 return False
             return all(_box_gap(x, y, sim.extent[w]) > RADIUS for w in sim.walls)
 
-        plan = motion.plan_se2((*start, 0.0), (*goal, 0.0), valid, wide, budget=0.2)
+        plan = motion.plan_se2((*start, 0.0), (*goal, 0.0), valid, wide, PUSHER_ITERATIONS)
         if plan is None:
             return [goal]
         self.plan_seconds += plan.seconds

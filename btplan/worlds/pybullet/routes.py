@@ -19,8 +19,9 @@ from btplan.worlds.pybullet.scene import Point
 from btplan.worlds.pybullet.state import SceneState
 
 STEP = 0.05          # metres between waypoints of a path
-PLAN_BUDGET = 0.3    # seconds OMPL may take for a path that avoids walls only (solves take ~15 ms)
-DETOUR_BUDGET = 0.1  # seconds for a path that also avoids the movable cubes
+PLAN_ITERATIONS = 3000    # RRTConnect iterations for a path that avoids walls only (~100 us
+                          # each; solves take a few dozen, hundreds at the most)
+DETOUR_ITERATIONS = 1000  # for a path that also avoids the movable cubes
 JOIN = CHECK_FROM    # metres a stale path may be joined over, from the robot or to the goal
 JOIN_BACK = 2 * round(JOIN / STEP)  # waypoints back from the end where the goal join may start
 
@@ -171,7 +172,7 @@ class Routes:
                     round(start[1], 1))
         if question in self._no_path:
             return ()
-        walls_only = self._solve(start, goal, [], PLAN_BUDGET)
+        walls_only = self._solve(start, goal, [], PLAN_ITERATIONS)
         if walls_only is None:
             self._no_path.add(question)
             return ()
@@ -182,19 +183,20 @@ class Routes:
                                     for c in cubes),
                       round(start[0], 1), round(start[1], 1))
             if layout not in self._no_detour:
-                detour = self._solve(start, goal, cubes, DETOUR_BUDGET)
+                detour = self._solve(start, goal, cubes, DETOUR_ITERATIONS)
                 if detour is None:
                     self._no_detour.add(layout)
                 else:
                     path = detour
         return path
 
-    def _solve(self, start: Pose2, goal: Pose2, cubes: list[str], budget: float
+    def _solve(self, start: Pose2, goal: Pose2, cubes: list[str], iterations: int
                ) -> tuple[Pose2, ...] | None:
         valid = self.state.sim.base_checker(cubes)
         if not (valid(start[0], start[1]) and valid(goal[0], goal[1])):
             return None  # OMPL would spend its whole budget before saying so
         began = time.perf_counter()
-        result = motion.plan_se2(start, goal, valid, self.state.scene.bounds, budget, STEP)
+        result = motion.plan_se2(start, goal, valid, self.state.scene.bounds, iterations,
+                                  STEP)
         self.plan_seconds.append(time.perf_counter() - began)  # failed solves count too
         return None if result is None else result.path

@@ -68,7 +68,7 @@ def drop_spot(world: SceneState) -> Point | None:
     cubes = world.floor_cubes(world.held)
     reach = world.scene.robot_radius + world.scene.cube_size / 2 + 0.05
     spots = [q for q in ring(world.base[:2], reach, world.base[2])
-             if world.sim.cube_fits(q[0], q[1], cubes)]
+             if world.sim.cube_fits(q[0], q[1], cubes) and not world.drop_missed(q)]
     paths = [t.path for t in world.trajectories.values() if t.path]
     keep = world.scene.robot_radius + world.scene.cube_size
 

@@ -163,10 +163,10 @@ def put_down(state: SceneState, timings: Timings, cube: str, spot: Point | None,
     yaw = robot.tip_yaw()
     above = arm.solve(state, timings, (spot[0], spot[1], z + ABOVE), yaw)
     at = arm.solve(state, timings, (spot[0], spot[1], z), yaw) if above is not None else None
-    if above is None or at is None:
-        return FAILURE  # out of reach: the cube stays in hand
-    if not (yield from arm.move_arm(state, timings, above, cube)):
-        return FAILURE
+    if above is None or at is None or not (yield from arm.move_arm(state, timings, above, cube)):
+        if place is None:
+            state.missed_drop(spot)  # out of reach, or no free way there: Drop tries elsewhere
+        return FAILURE  # the cube stays in hand
     yield from arm.follow(state, [robot.joints(), at])
 
     def done() -> bool:

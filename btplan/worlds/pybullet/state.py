@@ -24,6 +24,7 @@ QUERIES_KEPT = 5000  # collision query answers kept before they are all forgotte
 KEY_DIGITS = 4       # cube positions in the keys of those answers: to 0.1 mm
 MOVED = 0.02         # metres a cube must move before a failed reach of it is forgotten
 MISSED = 0.1         # metres around a base pose a grasp failed from: the same side of the cube
+SAME_SPOT = 0.05     # metres between two spots to put a cube down that count as one
 
 
 class SceneState:
@@ -47,6 +48,10 @@ class SceneState:
         """Base poses from which a grasp of a cube failed, and where the cube was then: the
         approach sampler offers other sides of the cube, so that MoveTo does not bring the
         robot back to a pose where Pick is known to fail."""
+        self.missed_drops: list[tuple[Pose2, Point]] = []
+        """Spots beside the base a held cube could not be lowered onto (no collision-free
+        reach), and the base pose each was tried from: Drop offers other spots from there,
+        where it used to pick the same spot, and fail, every time it was started."""
         self.trajectories: dict[str, Trajectory] = {}
         self.poses: dict[str, Point] = {}
         self.queries: dict[object, object] = {}
@@ -102,7 +107,8 @@ class SceneState:
                        t.layout) for t in self.trajectories.values())
         return (self.handled, self.releasing, frozenset(self.carried),
                 tuple(self.out_of_reach.items()), tuple(self.poses.items()), paths,
-                tuple((c, len(m[1])) for c, m in self.missed_from.items()))
+                tuple((c, len(m[1])) for c, m in self.missed_from.items()),
+                len(self.missed_drops))
 
     def check_objects(self) -> None:
         known = set(self.cube_names) | {r.name for r in self.scene.regions}
@@ -164,6 +170,15 @@ class SceneState:
         if all(distance(self.base, m) > MISSED for m in poses):
             poses = [*poses, self.base]  # a side tried again adds nothing to go round on
         self.missed_from[cube] = (at, poses)
+
+    def missed_drop(self, spot: Point) -> None:
+        """The arm could not put the held cube down at `spot` from where the base stands."""
+        self.missed_drops.append((self.base, spot))
+
+    def drop_missed(self, spot: Point) -> bool:
+        """A put-down at `spot` (or within SAME_SPOT of it) failed from here before."""
+        return any(distance(base, self.base) <= MISSED and distance(at, spot) <= SAME_SPOT
+                   for base, at in self.missed_drops)
 
     def missed_poses(self, name: str) -> list[Pose2]:
         """Base poses a grasp of `name` failed from, while it has not moved since."""

@@ -31,7 +31,7 @@ class PyBulletWorld(SkillWorld[SceneState, Conditions]):
     def __init__(self, task: Task, scene: Scene, seed: int = 0, gui: bool = False,
                  verbose: bool = False, agents: SceneAgents | None = None) -> None:
         motion.set_log_level(verbose)
-        motion.seed_rng(seed + 1)  # OMPL refuses a zero seed
+        motion.seed_rng(seed)
         self.scene = scene
         self.state = SceneState(task, scene, gui)
         self.routes = Routes(self.state)
@@ -116,9 +116,12 @@ class PyBulletWorld(SkillWorld[SceneState, Conditions]):
 
     @property
     def lessons(self) -> int:
-        """Sides of a cube the arm failed to grasp from (read by the loop): after a new one
-        the robot tries another side, so a state seen before is not a loop yet."""
-        return sum(len(poses) for _, poses in self.state.missed_from.values())
+        """Sides of a cube the arm failed to grasp from, and spots it failed to put a cube
+        down at (read by the loop): after a new one the robot tries another side or spot,
+        so a state seen before is not a loop yet."""
+        state = self.state
+        grasps = sum(len(poses) for _, poses in state.missed_from.values())
+        return grasps + len(state.missed_drops)
 
     def dead_ends(self) -> list[str]:
         """Why the loop may be going round (read by its diagnosis): a cube the arm failed to

@@ -78,7 +78,7 @@ to = [4.0, 0.0]
 
 @pytest.mark.slow
 def test_an_obstacle_put_back_after_it_was_cleared_is_cleared_again(tmp_path: Path) -> None:
-    """In a fresh process: OMPL's seed is process-wide, and this run depends on it."""
+    """Through the CLI, as a user runs it; the run depends on the seed (OMPL's paths)."""
     plan, trace = tmp_path / "plan.txt", tmp_path / "trace.jsonl"
     done = subprocess.run([sys.executable, "-m", "btplan", "run", str(YOUBOT), "--sim",
                            "pybullet", "--quiet", "--seed", "0", "--scenario",

@@ -281,7 +281,33 @@ def test_ompl_plans_an_arm_motion_in_joint_space_around_a_forbidden_box() -> Non
         return not (abs(q[0]) < 0.3 and abs(q[1]) < 0.5)  # the first joints must swing round
 
     assert not straight_free(start, goal, free)
-    plan = motion.plan_joints(start, goal, free, LOWER, UPPER, budget=1.0)
+    plan = motion.plan_joints(start, goal, free, LOWER, UPPER, iterations=5000)
     assert plan is not None and plan.path[0] == start and plan.path[-1] == goal
     assert all(free(q) for q in plan.path)
     assert all(straight_free(a, b, free) for a, b in zip(plan.path, plan.path[1:]))
+
+
+def test_a_spot_drop_could_not_reach_is_not_offered_again(
+        room: PyBulletWorld, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Drop picked the same spot every time it was started, so a spot the arm cannot
+    reach (beside a wall, over another cube) failed it every time until the run's ticks
+    ran out; the spot that failed is remembered, and the next Drop puts the cube elsewhere."""
+    from btplan.worlds.pybullet import arm, samplers
+
+    assert run(room, ("Pick", ("green",)))[0] is SUCCESS
+    first = samplers.drop_spot(room.state)
+    assert first is not None
+    solve = arm.solve
+
+    def blocked_at_first(state: object, timings: object, target: tuple[float, ...],
+                         yaw: float) -> tuple[float, ...] | None:
+        if distance(target[:2], first) < 0.01:
+            return None  # as if a wall stood between the arm and that spot
+        return solve(state, timings, target, yaw)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(arm, "solve", blocked_at_first)
+    drop = ("Drop", ("green",))
+    assert run(room, drop)[0] is FAILURE and room.check(("holding", ("green",)))
+    assert run(room, drop)[0] is SUCCESS and room.check(("hand_empty", ()))
+    assert distance(room.state.location("green"), first) > 0.1
+    assert room.lessons == 1

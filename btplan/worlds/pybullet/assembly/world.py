@@ -29,7 +29,7 @@ class AssemblyWorld(SkillWorld[AssemblyState, AssemblyConditions]):
     def __init__(self, task: Task, scene: AssemblyScene, seed: int = 0, gui: bool = False,
                  verbose: bool = False) -> None:
         motion.set_log_level(verbose)
-        motion.seed_rng(seed + 1)  # OMPL refuses a zero seed
+        motion.seed_rng(seed)
         self.scene = scene
         state = AssemblyState(task, scene, gui)
         super().__init__(task, state, AssemblyConditions(state, task))
