@@ -216,6 +216,8 @@ def _improvement(s: PlanStats) -> str:
     """What plan improvement did, for the summary ('' when it did not run)."""
     if s.removed is None:
         return ""
+    if s.shortest:
+        return "; plan improvement not needed: a lower bound shows no plan has fewer steps"
     if not s.removed:
         return f"; plan improvement found no plan with fewer steps ({s.improve_seconds:.2f} s)"
     searched = s.removed - s.eliminated

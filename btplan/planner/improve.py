@@ -97,12 +97,13 @@ def eliminate(space: PlanSpace, plan: list[int]) -> list[int]:
     return plan
 
 
-def improve(space: PlanSpace, plan: Sequence[GroundAction], limits: Limits
+def improve(space: PlanSpace, plan: Sequence[GroundAction], limits: Limits, floor: int = 0
             ) -> Improvement | None:
     """A better plan than `plan` (valid from the start, reaching the goal), or None.
 
     Stops at the deadline of `limits`, or when it says to stop, with the best plan
-    found by then.
+    found by then; and once the plan has `floor` steps, a lower bound on the steps of
+    any plan (bound.py) where every action costs the same.
     """
     numbers = space.encode(plan)
     if numbers is None or not space.reachable or not space.valid(numbers):
@@ -110,17 +111,18 @@ def improve(space: PlanSpace, plan: Sequence[GroundAction], limits: Limits
     result = Improvement(list(plan), len(plan))
     current = eliminate(space, numbers)
     result.eliminated = len(numbers) - len(current)
-    if limits.max_states > 0:
-        current = _search(space, current, result, limits)
+    if limits.max_states > 0 and len(current) > floor:
+        current = _search(space, current, result, limits, floor)
     if space.measure(current) >= space.measure(numbers):
         return None
     result.steps = [space.packed.actions[i] for i in current]
     return result
 
 
-def _search(space: PlanSpace, plan: list[int], result: Improvement, limits: Limits
-            ) -> list[int]:
-    """Plan-neighbourhood search from `plan`: the best plan found within `limits`."""
+def _search(space: PlanSpace, plan: list[int], result: Improvement, limits: Limits,
+            floor: int = 0) -> list[int]:
+    """Plan-neighbourhood search from `plan`: the best plan found within `limits`, or
+    the first of `floor` steps."""
 
     def around(plan: list[int]) -> Neighbourhood:
         return Neighbourhood(space, space.trajectory(plan), limits)
@@ -140,6 +142,8 @@ def _search(space: PlanSpace, plan: list[int], result: Improvement, limits: Limi
                 result.searched += len(plan) - len(better)
                 result.eliminated += len(better) - len(shorter)
                 plan, found_at = shorter, len(area.states)
+                if len(plan) <= floor:
+                    return plan  # no plan has fewer steps
                 area = around(plan)  # then as far out around the new trajectory
                 continue
             if area.closed or area.full or len(area.states) >= max(
