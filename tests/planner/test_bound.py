@@ -42,8 +42,11 @@ def test_actions_without_preconditions_and_goals_already_true() -> None:
 def test_unreachable_goals_and_the_caps() -> None:
     assert bound([(0,)], [(1,)], 3, [0], [2], enough=7) == 7  # nothing adds 2
     assert bound([(0,), (1,), (2,)], [(1,), (2,), (3,)], 4, [0], [3], enough=2) == 2
-    # no work allowed: no round runs, and 0 is still a bound
-    assert bound([(0,), (1,), (2,)], [(1,), (2,), (3,)], 4, [0], [3], work=0) == 0
+    # three rounds of 6 visits (4 preconditions, 2 start atoms) allowed or not: the
+    # bound or none (0 is still a bound)
+    chain = ([(0,), (1,), (2,)], [(1,), (2,), (3,)], 4, [0], [3])
+    assert bound(*chain, enough=3, work=18) == 3
+    assert bound(*chain, enough=3, work=17) == 0
 
 
 def shortest(task: Task) -> int:
@@ -107,3 +110,18 @@ def test_the_search_stops_at_a_plan_of_the_bound(tmp_path: Path) -> None:
     assert found.complete and not floored.complete
     assert floored.depth < found.depth
     validate(task, floored.steps)
+
+
+def test_a_plan_one_step_above_the_bound_is_searched_around_less(tmp_path: Path) -> None:
+    """Four balls (backchained: 13 steps, shortest 11): the neighbourhood of the 11-step
+    plan grows until it holds every reachable state (256), unless the plan is one step
+    above the floor: then it stops at SLACK_STATES."""
+    task = gripper(balls=4, tmp_path=tmp_path)
+    backchained = plan(task, improve=False).executed
+    found = improve(space_of(task), backchained, Limits())
+    near = improve(space_of(task), backchained, Limits(), floor=10)
+    assert found is not None and near is not None
+    assert len(found.steps) == len(near.steps) == 11
+    assert found.complete and not near.complete
+    assert near.depth < found.depth
+    validate(task, near.steps)
