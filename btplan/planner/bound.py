@@ -152,9 +152,11 @@ def fewest_steps(relaxed: RelaxedModel, state: frozenset[Atom],
 
     0 where it would not be one: when the model's actions differ in cost (a cheaper
     plan may take more steps, and improve.py weighs cost first) or when grounding cut
-    the model short (`RelaxedModel.complete`)."""
-    if not relaxed.complete or not relaxed.uniform():
-        return 0
+    the model short (`RelaxedModel.complete`); 0 too where `enough` rounds over the
+    model could take more than about `work` precondition visits."""
+    if (len(relaxed.actions) + 1) * enough > work or not relaxed.complete \
+            or not relaxed.uniform():
+        return 0  # every action is visited once a round: not even numbered then
     ids, pre, add = relaxed.numbered()
     goals = []
     for literal in goal:
