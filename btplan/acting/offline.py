@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
 
 from btplan.acting.loop import BlendedLoop, Expansion, TickReport
 from btplan.acting.whole_goal import EarlySlice, WholeGoalSearch
@@ -26,7 +25,10 @@ from btplan.planner.bound import fewest_steps
 from btplan.records import field, record, replace
 from btplan.worlds.symbolic import SymbolicWorld
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from typing import Any
+
     from btplan.planner.backjump import Choice
     from btplan.acting.online import RunOutcome as RunOutcome  # noqa: PLC0414
     from btplan.acting.online import run as run  # noqa: PLC0414

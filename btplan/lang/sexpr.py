@@ -14,12 +14,12 @@ from __future__ import annotations
 
 import re
 from functools import cache
-from typing import TYPE_CHECKING
 
 from btplan.lang.syntax import Source, Where
 from btplan.limits import MAX_NESTING, PDDL_BRACKETS, check_nesting, check_size
 from btplan.records import record
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
     from lark import Lark, Token, Transformer_NonRecursive
 

@@ -21,8 +21,8 @@ from __future__ import annotations
 
 import heapq
 from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
     from btplan.model import Atom, GroundLiteral
     from btplan.planner.heuristic import RelaxedModel
