@@ -7,7 +7,10 @@ the worlds; they are imported on first use (PEP 562) so that `import btplan` (an
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any
+
 
 __version__ = "0.1.0"
 

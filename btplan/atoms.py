@@ -8,10 +8,9 @@ nothing from btplan; btplan.model re-exports what it defines.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
-
+TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from typing import NamedTuple
+    from typing import Any, NamedTuple
 else:
     from collections import _tuplegetter  # the field access of named tuples, in C
 

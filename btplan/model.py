@@ -14,13 +14,16 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Mapping
 from functools import cached_property
-from typing import Any, Self, dataclass_transform
 
 from btplan.atoms import WILDCARD as WILDCARD
 from btplan.atoms import Atom as Atom
 from btplan.atoms import GroundLiteral as GroundLiteral
 from btplan.atoms import matches as matches
-from btplan.records import build, replace
+from btplan.records import build, dataclass_transform, replace
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any, Self
 
 ROOT_TYPE = "object"
 """Every type without a declared parent derives from this one."""

@@ -14,9 +14,11 @@ online loop nor its agents.
 from __future__ import annotations
 
 import importlib
-from typing import TYPE_CHECKING, Any
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from typing import Any
+
     from btplan.acting.loop import BlendedLoop, Expansion, TickReport
     from btplan.acting.offline import PlanResult, PlanStats, load, plan
     from btplan.acting.online import ACTING_OPTIONS, RunOutcome, run, task_models

@@ -8,11 +8,16 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Collection, Sequence
-from typing import Any, Protocol
 
 from btplan.bt import FAILURE, Action, Node
 from btplan.model import GroundLiteral
 from btplan.planner import AchieverIndex
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any, Protocol
+else:
+    Protocol = object  # a protocol only types: a plain base at run time
 
 
 class _Named(Protocol):

@@ -89,16 +89,16 @@ class Improved:
 
 def improve_executed(
     task: Task, models: AchieverIndex, tree: BehaviorTree, executed: Sequence[GroundAction],
-    seed: int, seconds: float, stop: Callable[[], bool] | None = None,
+    seed: int, seconds: float, stop: Callable[[], bool] | None = None, floor: int = 0,
 ) -> Improved | None:
     """A shorter plan than `executed`, ahead of `tree`; None when none is found within
-    about `seconds` or when `stop` says to stop."""
+    about `seconds` or when `stop` says to stop. `floor`: no plan has fewer steps."""
     until = time.perf_counter() + SEARCH_SHARE * seconds
     with building():
         packed, whole = packed_for(models, executed)
         space = PlanSpace(packed, frozenset(task.initial_state), task.goal_literals)
         states = Limits.states_for(len(packed.atoms)) if whole else 0
-        found = improve(space, executed, Limits(states, until, stop))
+        found = improve(space, executed, Limits(states, until, stop), floor)
     if found is None:
         return None
     improved = plan_first(tree, task, found.steps)

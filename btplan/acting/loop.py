@@ -12,7 +12,6 @@ from __future__ import annotations
 import time
 from collections import Counter
 from collections.abc import Callable
-from typing import TYPE_CHECKING
 
 from btplan.acting.ahead import later_false
 from btplan.acting.choice import achievers_for
@@ -57,6 +56,7 @@ from btplan.planner.agenda import goal_agenda, state_orders
 from btplan.planner.expand import goal_check, guard_nodes
 from btplan.planner.lookahead import closest_first
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:  # backjump (blame), protect (an option) and rescue: when first used
     from btplan.planner.backjump import Choice
     from btplan.planner.rescue import Rescuer

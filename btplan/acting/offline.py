@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
 
 from btplan.acting.loop import BlendedLoop, Expansion, TickReport
 from btplan.acting.whole_goal import EarlySlice, WholeGoalSearch
@@ -22,10 +21,14 @@ from btplan.bt import BehaviorTree, LeafKey
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex, PlannerOptions
+from btplan.planner.bound import fewest_steps
 from btplan.records import field, record, replace
 from btplan.worlds.symbolic import SymbolicWorld
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from typing import Any
+
     from btplan.planner.backjump import Choice
     from btplan.acting.online import RunOutcome as RunOutcome  # noqa: PLC0414
     from btplan.acting.online import run as run  # noqa: PLC0414
@@ -76,6 +79,9 @@ class PlanStats:
     """Of those, the ones action elimination took out (the rest: plan-neighbourhood search)."""
     improve_seconds: float = 0.0
     """Time plan improvement took."""
+    shortest: bool = False
+    """Whether a lower bound showed that no plan has fewer steps (btplan/planner/bound.py),
+    so plan improvement had nothing to look for."""
 
 
 @record
@@ -237,16 +243,23 @@ def _whole_goal(run: _Run, opts: PlannerOptions, backchaining: PlanningError,
 
 def _improve(run: _Run, result: PlanResult, say: Callable[[str], None] | None) -> PlanResult:
     """The result with a shorter plan ahead of its tree, when one is found in time."""
+    started = time.perf_counter()
+    relaxed, steps = run.models.relaxed, len(result.executed)
+    floor = fewest_steps(relaxed, run.task.initial_state, run.task.goal_literals, steps)
+    if floor >= steps:  # no plan is shorter: the search and its imports are spared
+        now = time.perf_counter()
+        return replace(result, stats=replace(result.stats, removed=0, shortest=True,
+                                             improve_seconds=now - started,
+                                             seconds=now - run.started))
     from btplan.acting.improved import budget, improve_executed
 
-    started = time.perf_counter()
     seconds = budget(run.started, started, run.deadline)
     if seconds <= 0:
         return result  # too close to the deadline: the plan stays as found
     if say is not None:
         say(f"improving the plan of {len(result.executed)} steps (up to {seconds:.1f} s)")
     found = improve_executed(run.task, run.models, result.tree, result.executed, run.seed,
-                             seconds, run.stop)
+                             seconds, run.stop, floor)
     if run.stop is not None and run.stop():
         raise Interrupted(f"planning, while improving the plan of {len(result.executed)} steps")
     now = time.perf_counter()

@@ -24,7 +24,6 @@ from __future__ import annotations
 import math
 import weakref
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING
 
 from btplan.bt import Composite, Fallback, Node
 from btplan.model import Atom, GroundAction, GroundLiteral, Task
@@ -32,6 +31,7 @@ from btplan.planner.expand import condition_node, pursued
 from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
     from btplan.acting.state import LoopState
 

@@ -11,12 +11,16 @@ itself.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Protocol
-
 from btplan.bt import BehaviorTree, LeafKey, Node, Status
 from btplan.model import GroundAction, GroundLiteral, Task
 from btplan.planner import AchieverIndex, Judge, PlannerOptions, PlanningWorld
 from btplan.records import field, record
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Protocol
+else:
+    Protocol = object  # a protocol only types: a plain base at run time
 
 if TYPE_CHECKING:
     from btplan.planner.backjump import Choice

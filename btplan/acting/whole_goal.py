@@ -10,12 +10,12 @@ strategy has failed. h^2 is asked first whether the goal can hold at all.
 from __future__ import annotations
 
 import time
-from typing import TYPE_CHECKING
 
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex
 from btplan.worlds.symbolic import SymbolicWorld
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:  # the search is loaded only when a plan run needs it
     from btplan.planner.search import SearchRun
 

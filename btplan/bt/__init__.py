@@ -9,7 +9,6 @@ imports what it uses.
 from __future__ import annotations
 
 import importlib
-from typing import TYPE_CHECKING, Any
 
 from btplan.bt.composites import Fallback, Sequence
 from btplan.bt.decorators import (
@@ -26,7 +25,10 @@ from btplan.bt.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 from btplan.bt.tree import BehaviorTree
 from btplan.bt.world import LeafKey, World
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from typing import Any
+
     from btplan.bt.blackboard import Blackboard, NodeError
     from btplan.bt.debug import LeafContractError, StrictWorld
     from btplan.bt.parallel import Parallel

@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Protocol
-
 from btplan.bt.node import Node
 from btplan.bt.status import Status
 from btplan.bt.world import World
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Protocol
+else:
+    Protocol = object  # a protocol only types: a plain base at run time
 
 if TYPE_CHECKING:
     from btplan.bt.formats.btcpp_files import ImportedTrees

@@ -7,9 +7,13 @@ to the world. The same tree therefore runs on every backend.
 
 from __future__ import annotations
 
-from typing import Protocol
-
 from btplan.bt.status import Status
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Protocol
+else:
+    Protocol = object  # a protocol only types: a plain base at run time
 
 LeafKey = tuple[str, tuple[str, ...]]
 

@@ -13,9 +13,11 @@ from __future__ import annotations
 import os
 import re
 import sys
-from typing import TYPE_CHECKING, Any, TextIO
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from typing import Any, TextIO
+
     from rich.console import Console
 
 _TAG = re.compile(r"(\\*)(\[[a-z#/@][^[]*?])")

@@ -11,7 +11,10 @@ from __future__ import annotations
 
 import os
 from types import FrameType, TracebackType
-from typing import TYPE_CHECKING, Any, Self
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any, Self
 
 if TYPE_CHECKING:
     import signal

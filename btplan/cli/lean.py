@@ -17,9 +17,12 @@ from __future__ import annotations
 
 import os
 import sys
-from typing import Any, NoReturn
 
 from btplan.cli.planning import FORMATS
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any, NoReturn
 
 _VALUED = {
     "-f": "fmt", "--format": "fmt", "-o": "out", "--output": "out", "--out": "out_alias",

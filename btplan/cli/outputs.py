@@ -18,11 +18,14 @@ import os
 import sys
 from pathlib import Path
 from types import TracebackType
-from typing import Self
 
 from btplan.errors import InputError
 from btplan.io import STDIO, write_atomic
 from btplan.records import record
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Self
 
 __all__ = ["STDIO", "LineStream", "Output", "check_outputs", "write_atomic"]
 

@@ -12,7 +12,6 @@ import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from btplan.cli.console import escape
 from btplan.cli.edge import CommandExit, stderr
@@ -21,6 +20,7 @@ from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Interrupted
 from btplan.records import replace
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
     from btplan.acting.loop import Expansion
     from btplan.acting.offline import PlanResult, PlanStats
@@ -216,6 +216,8 @@ def _improvement(s: PlanStats) -> str:
     """What plan improvement did, for the summary ('' when it did not run)."""
     if s.removed is None:
         return ""
+    if s.shortest:
+        return "; plan improvement not needed: a lower bound shows no plan has fewer steps"
     if not s.removed:
         return f"; plan improvement found no plan with fewer steps ({s.improve_seconds:.2f} s)"
     searched = s.removed - s.eliminated

@@ -8,9 +8,11 @@ parser (the problem generators, the writers) can be imported without them.
 from __future__ import annotations
 
 import importlib
-from typing import TYPE_CHECKING, Any
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from typing import Any
+
     from btplan.lang.loader import BtFile, Collection, collect, load, load_domain, parse_bt
     from btplan.lang.report import InputErrors
 

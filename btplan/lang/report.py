@@ -11,12 +11,15 @@ the others. Callers that show one error see the first (`InputErrors` is an Input
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import ParamSpec, TypeVar
 
 from btplan.errors import InputError
 
-P = ParamSpec("P")
-R = TypeVar("R")
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import ParamSpec, TypeVar
+
+    P = ParamSpec("P")
+    R = TypeVar("R")
 
 LIMIT = 25
 """After this many mistakes the rest are usually consequences; stop there."""

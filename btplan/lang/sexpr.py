@@ -14,12 +14,11 @@ from __future__ import annotations
 
 import re
 from functools import cache
-from typing import TYPE_CHECKING
 
 from btplan.lang.syntax import Source, Where
 from btplan.limits import MAX_NESTING, PDDL_BRACKETS, check_nesting, check_size
-from btplan.records import record
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
     from lark import Lark, Token, Transformer_NonRecursive
 
@@ -31,27 +30,65 @@ WORDS = {
     "SYMBOL": "a symbol",
 }
 
+if TYPE_CHECKING:
+    from typing import NamedTuple
 
-@record(frozen=True, slots=True)
-class Word:
-    """A token of the s-expression: a name, a variable, a keyword or a symbol."""
+    class Word(NamedTuple):
+        """A token of the s-expression: a name, a variable, a keyword or a symbol."""
 
-    text: str
-    kind: str
-    at: Where
+        text: str
+        kind: str
+        at: Where
+
+    class Group(NamedTuple):
+        """A parenthesised list; `at` is its opening parenthesis."""
+
+        items: tuple[Item, ...]
+        at: Where
+
+        def head(self) -> str | None: ...
+
+else:  # the same named tuples, written out (as btplan/atoms.py writes Atom): a file's
+    # every token and list is one of them, and a tuple is made in C where a record's
+    # fields are set one by one (about 1 us each, of a small problem's 4-5 ms reading)
+    from collections import _tuplegetter
+
+    class Word(tuple):
+        """A token of the s-expression: a name, a variable, a keyword or a symbol."""
+
+        __slots__ = ()
+        __match_args__ = ("text", "kind", "at")
+        text = _tuplegetter(0, "The token's text (lower case but for symbols).")
+        kind = _tuplegetter(1, "Its terminal: NAME, VARIABLE, KEYWORD, NUMBER or SYMBOL.")
+        at = _tuplegetter(2, "Where it starts.")
+
+        def __new__(cls, text, kind, at):
+            return _new_tuple(cls, (text, kind, at))
+
+        def __repr__(self):
+            return f"Word(text={self[0]!r}, kind={self[1]!r}, at={self[2]!r})"
+
+    class Group(tuple):
+        """A parenthesised list; `at` is its opening parenthesis."""
+
+        __slots__ = ()
+        __match_args__ = ("items", "at")
+        items = _tuplegetter(0, "What the parentheses hold, in order.")
+        at = _tuplegetter(1, "Where the opening parenthesis is.")
+
+        def __new__(cls, items, at):
+            return _new_tuple(cls, (items, at))
+
+        def __repr__(self):
+            return f"Group(items={self[0]!r}, at={self[1]!r})"
+
+        def head(self):
+            """The first item's text when it is a word (`define`, `:action`), else None."""
+            first = self[0][0] if self[0] else None
+            return first[0] if isinstance(first, Word) else None
 
 
-@record(frozen=True, slots=True)
-class Group:
-    """A parenthesised list; `at` is its opening parenthesis."""
-
-    items: tuple[Item, ...]
-    at: Where
-
-    def head(self) -> str | None:
-        first = self.items[0] if self.items else None
-        return first.text if isinstance(first, Word) else None
-
+_new_tuple = tuple.__new__
 
 Item = Word | Group
 
@@ -117,12 +154,12 @@ def _read_fast(text: str, source: Source) -> list[Item] | None:
                 return None
             children, opened = stack.pop()
             assert opened is not None
-            stack[-1][0].append(Group(tuple(children), opened))
+            stack[-1][0].append(_new_tuple(Group, (tuple(children), opened)))
         else:
             assert kind is not None
             word = found.group()
-            stack[-1][0].append(Word(word if kind == "SYMBOL" else word.lower(), kind,
-                                     source.at(line, column)))
+            stack[-1][0].append(_new_tuple(Word, (word if kind == "SYMBOL" else word.lower(),
+                                                  kind, source.at(line, column))))
     return stack[0][0] if len(stack) == 1 else None
 
 

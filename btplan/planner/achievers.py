@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
 
 from btplan.model import (
     WILDCARD,
@@ -33,6 +32,7 @@ from btplan.planner.options import PlannerOptions
 from btplan.planner.protocol import Refiner
 from btplan.planner.reach import building
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
     from btplan.planner.packed import PackedActions
     from btplan.planner.search import SubgoalSearch

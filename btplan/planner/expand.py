@@ -8,13 +8,13 @@ is an Inverter over the Condition leaf, and that Inverter is what gets expanded.
 from __future__ import annotations
 
 from collections.abc import Collection, Iterable, Mapping, Sequence
-from typing import TYPE_CHECKING
 
 from btplan.bt import FAILURE, Action, BehaviorTree, Condition, Fallback, Node
 from btplan.bt import Sequence as SequenceNode
 from btplan.bt.decorators import Inverter
 from btplan.model import Atom, GroundAction, GroundLiteral, Task
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
     from btplan.planner.heuristic import RelaxedModel
 

@@ -16,6 +16,8 @@ from collections.abc import Container, Iterator, Mapping
 from btplan.model import EQUALITY, ActionTemplate, Atom, Literal, Parameter, Task
 from btplan.planner.protocol import Refiner
 
+_NONE: frozenset[str] = frozenset()
+
 PLACEHOLDER = "?"
 """Stands for a refined value when no world is asked (grounding the whole domain) and
 the task declares no object of its type. Checks that mention it are satisfiable."""
@@ -30,14 +32,39 @@ class Objects:
         self._sets: dict[str, frozenset[str]] = {}
         self._state: frozenset[Atom] | None = None
         self._atoms: dict[str, list[Atom]] = {}
+        self._values: dict[tuple[str, int, tuple[int, ...], tuple[int, ...]],
+                           dict[tuple[str | None, ...], set[str]]] = {}
 
     def atoms(self, state: frozenset[Atom], predicate: str) -> list[Atom]:
         """The atoms of `predicate` in `state`, indexed once per state."""
         if state is not self._state:
-            self._state, self._atoms = state, {}
+            self._state, self._atoms, self._values = state, {}, {}
             for atom in state:
                 self._atoms.setdefault(atom.predicate, []).append(atom)
         return self._atoms.get(predicate, [])
+
+    def values(self, state: frozenset[Atom], predicate: str, args: list[str | None],
+               at: tuple[int, ...]) -> Container[str]:
+        """The values v such that `state` holds `predicate(args)` with v at the places
+        `at` (all the same value) and any value where `args` has None.
+
+        Indexed once per state and pattern (the places known and `at`): grounding asks
+        the same pattern for every value of the parameters bound before, and reading
+        every atom of the predicate each time was most of the grounding of small
+        problems' relaxed models."""
+        facts = self.atoms(state, predicate)
+        known = tuple(i for i, a in enumerate(args) if a is not None)
+        key = (predicate, len(args), known, at)
+        index = self._values.get(key)
+        if index is None:
+            index = self._values[key] = {}
+            for atom in facts:
+                if len(atom.args) != len(args):
+                    continue
+                seen = {atom.args[i] for i in at}
+                if len(seen) == 1:
+                    index.setdefault(tuple([atom.args[i] for i in known]), set()).update(seen)
+        return index.get(tuple([args[i] for i in known]), _NONE)
 
     def of(self, type_name: str) -> tuple[str, ...]:
         found = self._of.get(type_name)
@@ -167,14 +194,8 @@ def _supported(
         args = [binding.get(a, a if a not in types else None) for a in literal.args]
         if PLACEHOLDER in args:
             continue
-        allowed = set()
-        for atom in table.atoms(state, literal.predicate):
-            if len(atom.args) != len(args):
-                continue
-            if all(want is None or want == got for want, got in zip(args, atom.args)):
-                seen = {got for a, got in zip(literal.args, atom.args) if a == name}
-                if len(seen) == 1:
-                    allowed |= seen
+        at = tuple(i for i, a in enumerate(literal.args) if a == name)
+        allowed = table.values(state, literal.predicate, args, at)
         values = tuple(v for v in values if v in allowed)
     return list(values)
 

@@ -41,13 +41,17 @@ class RelaxedModel:
         """`reach`: only the groundings relaxed-reachable from the initial state
         (btplan/planner/reach.py); off, every grounding the static facts allow."""
         self.actions: list[GroundAction] = []
+        self.complete = True
+        """Whether no action template had more groundings than `limit` (then the model
+        holds every action a plan from the initial state can take)."""
         table = objects or Objects(task)
         with building():
             self._ground(task, table, limit, reach, ground)
 
     def _ground(self, task: Task, table: Objects, limit: int, reach: bool,
                 ground: Callable[[ActionTemplate, tuple[str, ...]], GroundAction]) -> None:
-        for template, args in _groundings(task, table, limit, reach):
+        found, self.complete = _groundings(task, table, limit, reach)
+        for template, args in found:
             action = ground(template, args)
             if action.cost < math.inf:  # an undefined cost makes it inapplicable
                 binding = {p.name: a for p, a in zip(template.parameters, args)}
@@ -81,6 +85,16 @@ class RelaxedModel:
         for i, pre in enumerate(self._pre):
             for atom in set(pre):
                 self._by_pre_id[ids[atom]].append(i)
+
+    def numbered(self) -> tuple[dict[Atom, int], list[tuple[int, ...]], list[tuple[int, ...]]]:
+        """The atom numbers of `costs`, and each action's positive preconditions and adds
+        as those numbers (for other estimates over the same model: bound.py)."""
+        ids = self._ids
+        return ids, [tuple([ids[a] for a in pre]) for pre in self._pre], self._add_ids
+
+    def uniform(self) -> bool:
+        """Whether every action costs the same."""
+        return len(set(self._action_cost)) <= 1
 
     def costs(self, state: frozenset[Atom]) -> dict[Atom, float]:
         """h_add cost of every reachable atom from `state` (generalised Dijkstra)."""
@@ -265,8 +279,9 @@ class RelaxedModel:
 
 def _groundings(
     task: Task, table: Objects, limit: int, reach: bool
-) -> list[tuple[ActionTemplate, tuple[str, ...]]]:
-    """The (template, arguments) pairs of the model, by reachability where it applies."""
+) -> tuple[list[tuple[ActionTemplate, tuple[str, ...]]], bool]:
+    """The (template, arguments) pairs of the model, by reachability where it applies,
+    and whether no template reached `limit` (none can have lost groundings)."""
     if reach:
         found = reachable_bindings(task, table)
         if found is not None:
@@ -276,13 +291,15 @@ def _groundings(
                 kept[template.name] = kept.get(template.name, 0) + 1
                 if kept[template.name] <= limit:
                     out.append((template, args))
-            return out
-    return [
-        (template, tuple(binding[p.name] for p in template.parameters))
-        for template in task.domain.actions
-        for binding in bindings(
-            task, template, {}, task.initial_state, None, limit, table, optimistic=True)
-    ]
+            return out, all(n < limit for n in kept.values())
+    out = []
+    complete = True
+    for template in task.domain.actions:
+        bound = [tuple(binding[p.name] for p in template.parameters) for binding in bindings(
+            task, template, {}, task.initial_state, None, limit, table, optimistic=True)]
+        complete = complete and len(bound) < limit
+        out.extend((template, args) for args in bound)
+    return out, complete
 
 
 def _optimistic(

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 from btplan.records import record, replace
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any
 
 
 @record(frozen=True, slots=True)

@@ -6,10 +6,15 @@ Structural: a world satisfies it without importing the planner.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from typing import Protocol
 
 from btplan.bt import World
 from btplan.model import ActionTemplate, Atom, Parameter
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Protocol
+else:
+    Protocol = object  # a protocol only types: a plain base at run time
 
 Refiner = Callable[[ActionTemplate, Mapping[str, str], Parameter], list[str]]
 """Supplies values for a `refined` parameter, best first (the paper's RefineActions)."""

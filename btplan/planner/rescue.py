@@ -23,7 +23,10 @@ from btplan.model import Atom, GroundAction, GroundLiteral, Task
 from btplan.planner.conflicts import guarantees, held_before, sequence_slots
 from btplan.planner.expand import GOAL_CHECK, action_node, condition_node, literal_of
 from btplan.planner.mutex import Mutexes
-from btplan.planner.search import SubgoalSearch
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # the engine is given: `regress` alone (plan improvement) needs no search
+    from btplan.planner.search import SubgoalSearch
 
 
 def rescue_targets(node: Node) -> list[tuple[Node, GroundLiteral]]:

@@ -11,7 +11,6 @@ to exercise the reactivity the paper's Problem 1 asks for.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
 
 from btplan.bt import FAILURE, RUNNING, SUCCESS, LeafKey, Status
 from btplan.errors import WorldError
@@ -28,6 +27,7 @@ from btplan.model import (
     matches,
 )
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
     from random import Random
 

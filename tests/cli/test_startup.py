@@ -23,7 +23,7 @@ HEAVY = ("rich", "pydantic", "pybullet", "numpy", "matplotlib", "email", "import
          "random", "btplan.lang.writers", "btplan.planner.search", "btplan.planner.rescue",
          "btplan.planner.backjump", "btplan.planner.protect", "btplan.bt.debug",
          "btplan.bt.parallel", "btplan.bt.trace", "btplan.bt.blackboard", "json", "signal",
-         "contextvars")
+         "contextvars", "typing")
 """Modules (and their submodules) that neither start-up nor `btplan plan` of well-formed
 PDDL needs (lark builds parsers: it reads .bt files and words PDDL syntax errors; typer
 builds the command line for help, errors and the other commands, cli/lean.py). The
@@ -33,7 +33,10 @@ mean"), traceback (for --debug) and importlib.resources (for shipped domains by 
 serve only other paths, random only worlds that fail actions on purpose, and btplan's
 writers only messages about mistakes; json is imported only for a string the tree
 writer cannot write unchanged (or a trace), and the signal handlers and the `--debug`
-switch do without `signal`'s enums and `contextvars`. Of the planner, the last-resort search and what
+switch do without `signal`'s enums and `contextvars`. `typing` (4 ms of CPU) is read by
+the type checker only: modules name it under `TYPE_CHECKING = False` (a protocol is a
+plain base class at run time, and btplan/records.py stands in for the two decorators
+it uses). Of the planner, the last-resort search and what
 turns its plan into a subtree (search, rescue), the blame of choices when planning stops
 (backjump), the `protect_goals` option (protect), `--debug`'s strict world, Parallel
 nodes, per-tick traces and the blackboard of BT.CPP trees are imported when first used."""

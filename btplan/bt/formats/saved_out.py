@@ -15,7 +15,6 @@ anything else is left to `json`, which is imported only then.
 from __future__ import annotations
 
 import sys
-from typing import TYPE_CHECKING, Any, cast
 
 from btplan.bt.composites import Fallback, Sequence
 from btplan.bt.decorators import Retry, Timeout
@@ -25,7 +24,10 @@ from btplan.bt.status import IDLE
 from btplan.bt.tree import BehaviorTree
 from btplan.errors import InputError
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from typing import Any
+
     from btplan.bt.parallel import Parallel
 
 FORMAT = "btplan-tree"
@@ -90,7 +92,11 @@ def _parallel() -> type[Parallel] | None:
     """The Parallel class if its module was imported; before that no Parallel node exists,
     and trees grown by backchaining (which have none) are written without importing it."""
     module = sys.modules.get("btplan.bt.parallel")
-    return None if module is None else cast("type[Parallel]", module.Parallel)
+    if module is None:
+        return None
+    from typing import cast  # only for a tree with Parallel nodes, rare
+
+    return cast("type[Parallel]", module.Parallel)
 
 
 def tree_data(tree: BehaviorTree, with_status: bool = False) -> dict[str, Any]:
