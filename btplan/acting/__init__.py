@@ -19,12 +19,13 @@ TYPE_CHECKING = False
 if TYPE_CHECKING:
     from typing import Any
 
+    from btplan.acting.attempt import PlanResult, PlanStats
     from btplan.acting.loop import BlendedLoop, Expansion, TickReport
-    from btplan.acting.offline import PlanResult, PlanStats, load, plan
+    from btplan.acting.offline import load, plan
     from btplan.acting.online import ACTING_OPTIONS, RunOutcome, run, task_models
 
 _HOMES = {"BlendedLoop": "loop", "Expansion": "loop", "TickReport": "loop",
-          "PlanResult": "offline", "PlanStats": "offline", "load": "offline", "plan": "offline",
+          "PlanResult": "attempt", "PlanStats": "attempt", "load": "offline", "plan": "offline",
           "ACTING_OPTIONS": "online", "RunOutcome": "online", "run": "online",
           "task_models": "online"}
 

@@ -8,6 +8,9 @@ was moved, and once the goal is reached, runs the tree once more from the initia
 state. Runs repeat (the tree keeps growing) until one reaches the goal with no
 expansion at all: every tree `plan` returns reaches the goal when ticked from the
 initial state, and `executed` is the action sequence of that last run.
+
+One attempt's rounds are in `attempt`; here are the strategies and retries that choose
+each attempt's options, the last resort, and plan improvement.
 """
 
 from __future__ import annotations
@@ -15,23 +18,23 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
-from btplan.acting.loop import BlendedLoop, Expansion, TickReport
+from btplan.acting.attempt import PlanResult, Run, attempt
+from btplan.acting.loop import Expansion
 from btplan.acting.whole_goal import EarlySlice, WholeGoalSearch
-from btplan.bt import BehaviorTree, LeafKey
+from btplan.bt import BehaviorTree
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex, PlannerOptions
 from btplan.planner.bound import fewest_steps
-from btplan.records import field, record, replace
-from btplan.worlds.symbolic import SymbolicWorld
+from btplan.records import replace
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
     from typing import Any
 
-    from btplan.planner.backjump import Choice
     from btplan.acting.online import RunOutcome as RunOutcome  # noqa: PLC0414
     from btplan.acting.online import run as run  # noqa: PLC0414
+    from btplan.planner.backjump import Choice
 
 
 def __getattr__(name: str) -> Any:
@@ -52,46 +55,6 @@ def load(*paths: str, problem: str | None = None) -> Task:
     from btplan.lang import load as load_paths
 
     return load_paths(list(paths), problem)
-
-
-@record
-class PlanStats:
-    expansions: int
-    conflicts_resolved: int
-    moves: int
-    tree_size: int
-    actions_executed: int
-    ticks: int
-    rounds: int
-    seconds: float
-    premature_successes: int = 0
-    searches: int = 0
-    """Stuck conditions planned by the last-resort search and inserted as subtrees."""
-    cost: float = 0.0
-    """The executed plan's cost: the sum of its actions' costs (its length in unit cost)."""
-    retries: int = 0
-    """Attempts started over, each without an achiever choice that failed (backjump.py)."""
-    whole_goal: bool = False
-    """Whether the tree is the last resort's: a searched plan for the whole goal."""
-    removed: int | None = None
-    """Steps plan improvement took out of the executed plan (None: not tried)."""
-    eliminated: int = 0
-    """Of those, the ones action elimination took out (the rest: plan-neighbourhood search)."""
-    improve_seconds: float = 0.0
-    """Time plan improvement took."""
-    shortest: bool = False
-    """Whether a lower bound showed that no plan has fewer steps (btplan/planner/bound.py),
-    so plan improvement had nothing to look for."""
-
-
-@record
-class PlanResult:
-    """The final tree, the actions its last run executed, and what planning cost."""
-
-    tree: BehaviorTree
-    executed: list[GroundAction]
-    stats: PlanStats
-    expansions: list[Expansion] = field(default_factory=list)
 
 
 def plan(
@@ -145,7 +108,7 @@ def plan(
     soft = deadline
     if whole and timeout:  # leave the whole-goal search its share of the time
         soft = started + timeout * BACKCHAIN_SHARE
-    run = _Run(task, seed, max_ticks, deadline, timeout, on_expansion, started, models, stop)
+    run = Run(task, seed, max_ticks, deadline, timeout, on_expansion, started, models, stop)
     last = WholeGoalSearch(task, models, seed) if whole else None
     early = None if last is None or deadline is None else EarlySlice(last, deadline)
     try:
@@ -164,28 +127,13 @@ def plan(
     return _improve(run, result, say) if improve and opts.improve_plan else result
 
 
-@record(frozen=True)
-class _Run:
-    """What every attempt of one `plan` call shares: the task, its limits, its callbacks."""
-
-    task: Task
-    seed: int
-    max_ticks: int
-    deadline: float | None
-    timeout: float | None
-    on_expansion: Callable[[BehaviorTree, Expansion], None] | None
-    started: float
-    models: AchieverIndex
-    stop: Callable[[], bool] | None
-    limit: str = ""
-    """How a failure names the time limit that ran out, when it is not `timeout` itself."""
 
 
 BACKCHAIN_SHARE = 0.8
 """The share of a time limit backchaining gets before the whole-goal search (the last resort)."""
 
 
-def _strategies(run: _Run, strategies: list[PlannerOptions],
+def _strategies(run: Run, strategies: list[PlannerOptions],
                 stalled: Callable[[], PlanResult | None] | None = None) -> PlanResult:
     """The strategies in turn; the first error, saying what the others did, when all fail.
 
@@ -221,13 +169,13 @@ def _strategies(run: _Run, strategies: list[PlannerOptions],
     raise first_error
 
 
-def _early(run: _Run, opts: PlannerOptions, early: EarlySlice) -> PlanResult | None:
+def _early(run: Run, opts: PlannerOptions, early: EarlySlice) -> PlanResult | None:
     """The whole-goal search's early slice when the first attempt failed."""
     steps = early.take()
     return None if steps is None else _adopt(run, opts, steps)
 
 
-def _whole_goal(run: _Run, opts: PlannerOptions, backchaining: PlanningError,
+def _whole_goal(run: Run, opts: PlannerOptions, backchaining: PlanningError,
                 last: WholeGoalSearch) -> PlanResult:
     """The last resort when backchaining failed: search on for a plan for the whole goal
     from the initial state and put it behind the goal tree (rescue.plan_whole_goal)."""
@@ -241,7 +189,7 @@ def _whole_goal(run: _Run, opts: PlannerOptions, backchaining: PlanningError,
     return _adopt(run, opts, steps)
 
 
-def _improve(run: _Run, result: PlanResult, say: Callable[[str], None] | None) -> PlanResult:
+def _improve(run: Run, result: PlanResult, say: Callable[[str], None] | None) -> PlanResult:
     """The result with a shorter plan ahead of its tree, when one is found in time."""
     started = time.perf_counter()
     relaxed, steps = run.models.relaxed, len(result.executed)
@@ -276,15 +224,15 @@ def _improve(run: _Run, result: PlanResult, say: Callable[[str], None] | None) -
     return replace(result, tree=found.tree, executed=found.executed, stats=stats)
 
 
-def _adopt(run: _Run, opts: PlannerOptions, steps: list[GroundAction]) -> PlanResult:
+def _adopt(run: Run, opts: PlannerOptions, steps: list[GroundAction]) -> PlanResult:
     """The tree with a plan for the whole goal behind the goal tree, run from the start."""
     options = replace(opts, search_stuck=False, retries=0)
-    result = _attempt(run, options, plan=steps)
+    result = attempt(run, options, plan=steps)
     result.stats.whole_goal = True
     return result
 
 
-def _retrying(run: _Run, opts: PlannerOptions, given_up: list[Choice],
+def _retrying(run: Run, opts: PlannerOptions, given_up: list[Choice],
               stalled: Callable[[], PlanResult | None] | None = None) -> PlanResult:
     """Attempts of one strategy, each after a failure without one more achiever choice.
 
@@ -297,21 +245,21 @@ def _retrying(run: _Run, opts: PlannerOptions, given_up: list[Choice],
     """
     banned: list[Choice] = []
     first: PlanningError | None = None
-    for attempt in range(opts.retries + 1):
+    for number in range(opts.retries + 1):
         culprits: list[Choice] = []
         try:
-            result = _attempt(run, opts, frozenset(banned), culprits)
+            result = attempt(run, opts, frozenset(banned), culprits)
         except BudgetExceededError:
             raise
         except PlanningError as error:
             first = first or error
-            rescued = stalled() if stalled is not None and attempt == 0 else None
+            rescued = stalled() if stalled is not None and number == 0 else None
             if rescued is not None:
                 return rescued
             fresh = [c for c in culprits if c not in banned]
             late = run.deadline is not None and time.perf_counter() > run.started + (
                 RETRY_SHARE * (run.deadline - run.started))
-            if not fresh or attempt == opts.retries or late:
+            if not fresh or number == opts.retries or late:
                 break
             banned.append(fresh[0])
             given_up.append(fresh[0])
@@ -356,107 +304,3 @@ def fallback_strategies(options: PlannerOptions) -> list[PlannerOptions]:
         replace(options, reorder_goals=False),
         replace(options, protect_goals=True),
     ]
-
-
-def _attempt(
-    run: _Run,
-    opts: PlannerOptions,
-    banned: frozenset[Choice] = frozenset(),
-    culprits: list[Choice] | None = None,
-    plan: list[GroundAction] | None = None,
-) -> PlanResult:
-    """Rounds of Algorithm 1 from the initial state until one needs no expansion.
-
-    `banned` choices are never used; when planning stops, `culprits` receives the
-    choices the loop blames. `plan`, a plan for the whole goal, goes behind the goal
-    tree before the first tick.
-    """
-    groundings: dict[LeafKey, GroundAction] = {}
-    world = SymbolicWorld(run.task, seed=run.seed, groundings=groundings)
-    loop = BlendedLoop(run.task, world, opts, like=run.models, banned=banned)
-    if plan is not None:
-        loop.adopt_plan(plan)
-    try:
-        return _rounds(run, opts, loop, groundings)
-    finally:
-        if culprits is not None:
-            culprits.extend(loop.culprits)
-
-
-def _rounds(
-    run: _Run, opts: PlannerOptions, loop: BlendedLoop, groundings: dict[LeafKey, GroundAction]
-) -> PlanResult:
-    """The runs of one attempt, each from the initial state."""
-    task, seed, deadline, stop, on_expansion = (run.task, run.seed, run.deadline, run.stop,
-                                                run.on_expansion)
-    world = loop.world
-    assert isinstance(world, SymbolicWorld)
-    loop.deadline = deadline
-    ticks_left = run.max_ticks
-
-    def watch(report: TickReport) -> None:
-        if stop is not None and stop():
-            loop.tree.halt(loop.world)
-            raise Interrupted(f"{len(loop.expansions)} expansions and {loop.ticks} ticks "
-                              f"(tree of {len(loop.tree.nodes())} nodes)")
-        if deadline is not None and time.perf_counter() > deadline:
-            raise BudgetExceededError(
-                f"{run.limit or f'time limit of {run.timeout:g} s'} reached after {len(loop.expansions)} expansions "
-                f"(tree of {len(loop.tree.nodes())} nodes); expanded most often: "
-                f"{loop.most_expanded() or 'nothing'}")
-        if on_expansion is not None:
-            for expansion in report.expansions:
-                on_expansion(loop.tree, expansion)
-        if any(e.moves for e in report.expansions):
-            raise _Restart(report.tick)
-
-    # Every run but the last expands at least once, so the expansion budget bounds them.
-    max_rounds = opts.max_expansions + 1
-    for rounds in range(1, max_rounds + 1):
-        if rounds > 1:
-            world = SymbolicWorld(task, seed=seed, groundings=groundings)
-            loop.use_world(world)
-        ticks_before = loop.ticks
-        premature_before = loop.premature_successes
-        try:
-            result = loop.run(ticks_left, on_tick=watch)
-        except _Restart:
-            ticks_left -= loop.ticks - ticks_before
-            continue
-        ticks_left -= result.ticks
-        if not result.reached:
-            raise BudgetExceededError(result.reason)
-        if not result.expansions:
-            return PlanResult(
-                tree=loop.tree,
-                executed=list(world.executed),
-                stats=_stats(loop, world, rounds, time.perf_counter() - run.started,
-                             loop.premature_successes - premature_before),
-                expansions=list(loop.expansions),
-            )
-    raise PlanningError(
-        f"after {max_rounds} runs from the initial state the tree still needed "
-        "expansions; the order it found depends on the state it was built in"
-    )
-
-
-class _Restart(Exception):
-    """A subtree moved: start the world afresh from the initial state."""
-
-
-def _stats(
-    loop: BlendedLoop, world: SymbolicWorld, rounds: int, seconds: float, premature: int
-) -> PlanStats:
-    return PlanStats(
-        expansions=len(loop.expansions),
-        conflicts_resolved=sum(e.conflicts_resolved for e in loop.expansions),
-        moves=sum(e.moves for e in loop.expansions),
-        tree_size=len(loop.tree.nodes()),
-        actions_executed=len(world.executed),
-        ticks=loop.ticks,
-        rounds=rounds,
-        seconds=seconds,
-        premature_successes=premature,
-        searches=loop.searches,
-        cost=sum(a.cost for a in world.executed),
-    )

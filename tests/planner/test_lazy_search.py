@@ -125,7 +125,7 @@ def test_a_search_paused_at_a_deadline_goes_on_where_it_stopped(tmp_path: Path) 
 def test_the_whole_goal_search_starts_when_the_first_attempt_fails(
         monkeypatch: pytest.MonkeyPatch) -> None:
     task = load(str(DOMAINS / "planner_sussman.bt"))
-    attempt = offline._attempt
+    attempt = offline.attempt
     tried = []
 
     def failing(run: object, opts: object, *args: object, **kwargs: object) -> object:
@@ -134,7 +134,7 @@ def test_the_whole_goal_search_starts_when_the_first_attempt_fails(
         tried.append(opts)
         raise NoAchieverError("stuck")
 
-    monkeypatch.setattr(offline, "_attempt", failing)
+    monkeypatch.setattr(offline, "attempt", failing)
     result = plan(task, timeout=60)  # with a time limit: its slice comes at once
     assert result.stats.whole_goal and len(tried) == 1
     validate(task, result.executed)
