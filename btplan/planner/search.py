@@ -117,13 +117,16 @@ class SubgoalSearch:
                 or packed.add_mask[i] & absent}
 
     def improved(self, estimates: tuple[float, float], best: list[float],
-                 turns: list[int]) -> None:
-        """Note better estimates; each improvement moves the preferred queues ahead."""
+                 turns: list[int]) -> bool:
+        """Note better estimates (whether there are any); each improvement moves the
+        preferred queues ahead."""
+        better = False
         for k, value in enumerate(estimates[:len(turns) // 2]):
             if value < best[k]:
-                best[k] = value
+                best[k], better = value, True
                 for q in range(1, len(turns), 2):
                     turns[q] -= self.boost
+        return better
 
     def path(self, parents: Parents, state: int) -> list[GroundAction]:
         """The actions from the start to `state`, by way of each state's parent."""
@@ -160,6 +163,8 @@ class SearchRun:
         """Whether the search is over: a plan found, no plan exists, or a bound reached."""
         self.plan: list[GroundAction] | None = None
         self.expanded = 0
+        self.better_at = 0
+        """The states expanded when an estimate last improved."""
         self.exhausted = False
         """Whether the search ran out of states to look at (no plan exists)."""
         engine.expanded, engine.exhausted = 0, False
@@ -259,7 +264,8 @@ class SearchRun:
             passed = reached[state] = self.progress(reached[parent], state)
             future = self.future(state, passed) if marks else 0
             estimates = (h, bin(future).count("1") if marks else h)
-            engine.improved(estimates, self.best, turns)
+            if engine.improved(estimates, self.best, turns):
+                self.better_at = self.expanded
             self.expanded = engine.expanded = self.expanded + 1
             if self.expanded >= self.max_states or (
                     self.max_stored is not None and len(parents) > self.max_stored):
@@ -294,7 +300,10 @@ class SearchRun:
 
 
 class Portfolio:
-    """Two searches taking turns, `SLICE` states each; the first plan found is the answer.
+    """Two searches taking turns of `SLICE` states; the first plan found is the answer.
+
+    Each turn goes to the search whose estimates improved fewest states ago (the
+    first on ties), so a search that keeps improving keeps the time.
 
     The first is the search as configured. The second also prefers the actions that
     make a landmark still to reach true, and counts a reached landmark again while it
@@ -324,16 +333,16 @@ class Portfolio:
         """Search on, in turns, until a plan is found (returned), both searches are
         over (or one finds that no plan exists), or `deadline`."""
         while not self.done:
-            for run in self.runs:
-                if run.done:
-                    continue
-                self.plan = run.resume(deadline, SLICE)
-                self.exhausted = run.exhausted
-                if self.plan is not None or self.exhausted:
-                    self.done = True
-                    return self.plan
-            self.done = all(run.done for run in self.runs)
-            if deadline is not None and time.perf_counter() > deadline:
+            waiting = [run for run in self.runs if not run.done]
+            if not waiting:
+                self.done = True
+                break
+            run = min(waiting, key=lambda run: run.expanded - run.better_at)
+            self.plan = run.resume(deadline, SLICE)
+            self.exhausted = run.exhausted
+            if self.plan is not None or self.exhausted:
+                self.done = True
+            elif deadline is not None and time.perf_counter() > deadline:
                 break
         return self.plan
 

@@ -81,8 +81,19 @@ def test_a_portfolio_takes_turns_and_returns_the_first_plan_found(tmp_path: Path
     assert steps is not None and portfolio.done
     validate(task, steps)
     assert portfolio.expanded == first.expanded + second.expanded
-    # Turns of SLICE states: the one that found the plan is at most one turn ahead.
-    assert abs(first.expanded - second.expanded) <= SLICE
+
+
+def test_the_turn_goes_to_the_search_that_improved_last(tmp_path: Path) -> None:
+    task = generated(tmp_path, "blocksworld", 2, blocks=20)
+    engine = AchieverIndex(task).subgoal_search
+    portfolio = engine.begin(task.initial_state, task.goal_literals, portfolio=True)
+    assert isinstance(portfolio, Portfolio)
+    first, second = portfolio.runs
+    portfolio.resume(deadline=0.0)  # a deadline long past: one turn, cut at 32 states
+    assert (first.expanded, second.expanded) == (32, 0)  # ties go to the first
+    first.better_at = first.expanded - SLICE  # as if the first had stalled for a while
+    portfolio.resume(deadline=0.0)
+    assert (first.expanded, second.expanded) == (32, 32)
 
 
 def test_a_portfolio_stops_when_one_search_shows_there_is_no_plan(tmp_path: Path) -> None:
