@@ -17,7 +17,7 @@ from btplan.worlds.symbolic import SymbolicWorld
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:  # the search is loaded only when a plan run needs it
-    from btplan.planner.search import SearchRun
+    from btplan.planner.search import Portfolio, SearchRun
 
 WHOLE_STATES = 1_000_000
 """States the whole-goal search may expand; the time limit usually comes first."""
@@ -37,7 +37,7 @@ class WholeGoalSearch:
         self.task, self.models, self.seed = task, models, seed
         self.proof: str | None = None
         """Why no plan exists, when h^2 proves it (then nothing is searched)."""
-        self._run: SearchRun | None = None
+        self._run: SearchRun | Portfolio | None = None
         self._checked = False
 
     def resume(self, until: float | None) -> list[GroundAction] | None:
@@ -51,7 +51,7 @@ class WholeGoalSearch:
             start = SymbolicWorld(self.task, seed=self.seed).facts()
             self._run = self.models.subgoal_search.begin(
                 start, list(self.task.goal_literals), max_states=WHOLE_STATES,
-                max_stored=WHOLE_STORED)
+                max_stored=WHOLE_STORED, portfolio=True)
         if self._run.done:
             return self._run.plan
         return self._run.resume(until)
