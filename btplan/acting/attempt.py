@@ -79,6 +79,17 @@ class Run:
     stop: Callable[[], bool] | None
     limit: str = ""
     """How a failure names the time limit that ran out, when it is not `timeout` itself."""
+    search_turn: Callable[[], list[GroundAction] | None] | None = None
+    """Asked after every tick: gives the whole-goal search its turn when one is due, and
+    returns the plan it found then (whole_goal.SearchTurns)."""
+
+
+class SearchFound(Exception):
+    """The whole-goal search found a plan in its turn: the attempt stops for it."""
+
+    def __init__(self, steps: list[GroundAction]) -> None:
+        super().__init__(f"a plan of {len(steps)} steps")
+        self.steps = steps
 
 
 def attempt(
@@ -130,6 +141,10 @@ def _rounds(
         if on_expansion is not None:
             for expansion in report.expansions:
                 on_expansion(loop.tree, expansion)
+        if run.search_turn is not None:
+            steps = run.search_turn()
+            if steps is not None:
+                raise SearchFound(steps)
         if any(e.moves for e in report.expansions):
             raise _Restart(report.tick)
 

@@ -18,9 +18,9 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
-from btplan.acting.attempt import PlanResult, Run, attempt
+from btplan.acting.attempt import PlanResult, Run, SearchFound, attempt
 from btplan.acting.loop import Expansion
-from btplan.acting.whole_goal import EarlySlice, WholeGoalSearch
+from btplan.acting.whole_goal import EarlySlice, SearchTurns, WholeGoalSearch
 from btplan.bt import BehaviorTree
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
@@ -117,8 +117,12 @@ def plan(
             share = replace(run, deadline=soft, timeout=soft - started, limit=(
                 f"backchaining's share ({timeout * BACKCHAIN_SHARE:g} s) of the {timeout:g} s "
                 "time limit"))
+        if last is not None and soft is not None and timeout:
+            share = replace(share, search_turn=SearchTurns(last, started, timeout, soft).take)
         result = _strategies(share, strategies, None if early is None else (
             lambda: _early(run, opts, early)))
+    except SearchFound as found:
+        result = _adopt(run, opts, found.steps)
     except PlanningError as error:
         out_of_time = deadline is not None and time.perf_counter() >= deadline
         if last is None or out_of_time:

@@ -85,6 +85,47 @@ class EarlySlice:
         return self.last.resume(now + (self.deadline - now) * EARLY_SHARE)
 
 
+class SearchTurns:
+    """Turns of the whole-goal search while backchaining's attempts still run.
+
+    On a large model one attempt of backchaining can use most of its share of the time
+    limit before it fails (parking: 17-24 s of 30), and the search, which needs some
+    ten seconds there, is left too little. So once backchaining has run FIRST_TURN
+    seconds (or FIRST_TURN_SHARE of a shorter limit), the search gets a turn as long as
+    backchaining has had since the last turn, and so on: past that first wait, each gets
+    about half of the time until `until` (backchaining's share). The search resumes
+    where its last turn stopped, so no turn is lost.
+    """
+
+    def __init__(self, last: WholeGoalSearch, started: float, limit: float, until: float) -> None:
+        self.last, self.until = last, until
+        self.since = started
+        """When backchaining last got the time back."""
+        self.next_turn = started + min(FIRST_TURN, FIRST_TURN_SHARE * limit)
+        self.turns = 0
+
+    def take(self) -> list[GroundAction] | None:
+        """The plan, when a turn is due now and the search finds one in it."""
+        now = time.perf_counter()
+        if now < self.next_turn or now >= self.until or self.last.proof is not None:
+            return None
+        self.turns += 1
+        steps = self.last.resume(min(now + max(now - self.since, MIN_TURN), self.until))
+        self.since = time.perf_counter()
+        self.next_turn = self.since + (self.since - now)  # as long again for backchaining
+        return steps
+
+
+FIRST_TURN = 5.0
+"""Seconds of backchaining before the whole-goal search's first turn."""
+
+FIRST_TURN_SHARE = 0.15
+"""The share of a time limit before the first turn, when that is sooner than FIRST_TURN."""
+
+MIN_TURN = 0.5
+"""The shortest turn: the search's first states set up its heuristics."""
+
+
 def unsolvable(task: Task, models: AchieverIndex) -> str | None:
     """Why the goal can never hold, when h^2 proves it (the search would be in vain)."""
     goals = [g for g in task.goal_literals if g.positive]

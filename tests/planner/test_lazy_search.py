@@ -143,3 +143,76 @@ def test_the_whole_goal_search_starts_when_the_first_attempt_fails(
     assert result.stats.whole_goal
     assert len(tried) == len(offline.fallback_strategies(PlannerOptions())) + 1
 
+
+
+class _Clock:
+    """perf_counter for SearchTurns: time moves only when the search is said to run."""
+
+    def __init__(self) -> None:
+        self.now = 100.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+class _Search:
+    """A whole-goal search that uses its whole turn and finds a plan on the `finds`-th."""
+
+    def __init__(self, clock: _Clock, finds: int) -> None:
+        self.clock, self.finds = clock, finds
+        self.turns: list[tuple[float, float]] = []
+        self.proof = None
+
+    def resume(self, until: float) -> list[str] | None:
+        self.turns.append((self.clock.now, until))
+        self.clock.now = until
+        return ["step"] if len(self.turns) == self.finds else None
+
+
+def test_search_turns_come_after_the_first_wait_and_share_the_time_evenly(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from btplan.acting import whole_goal
+
+    clock = _Clock()
+    monkeypatch.setattr(whole_goal.time, "perf_counter", clock)
+    search = _Search(clock, finds=3)
+    turns = whole_goal.SearchTurns(search, started=100.0, limit=300.0, until=200.0)  # type: ignore[arg-type]
+    clock.now = 104.0
+    assert turns.take() is None and search.turns == []  # backchaining's first 5 s
+    clock.now = 105.5
+    assert turns.take() is None and search.turns == [(105.5, 111.0)]  # as long as it waited
+    clock.now = 116.0  # backchaining's 5 s of its 5.5 s back: not yet
+    assert turns.take() is None and len(search.turns) == 1
+    clock.now = 117.0
+    assert turns.take() is None and search.turns[1] == (117.0, 123.0)
+    clock.now = 130.0
+    assert turns.take() == ["step"] and search.turns[2] == (130.0, 137.0)
+    clock.now = 200.0  # backchaining's share is over: the search has the rest anyway
+    assert turns.take() is None and len(search.turns) == 3
+
+
+def test_a_short_time_limit_brings_the_first_turn_sooner(monkeypatch: pytest.MonkeyPatch) -> None:
+    from btplan.acting import whole_goal
+
+    clock = _Clock()
+    monkeypatch.setattr(whole_goal.time, "perf_counter", clock)
+    search = _Search(clock, finds=1)
+    turns = whole_goal.SearchTurns(search, started=100.0, limit=10.0, until=108.0)  # type: ignore[arg-type]
+    clock.now = 101.4
+    assert turns.take() is None and search.turns == []
+    clock.now = 101.5  # 15% of 10 s
+    assert turns.take() == ["step"] and search.turns == [(101.5, 103.0)]
+
+
+def test_a_plan_found_in_a_search_turn_stops_backchaining_and_is_the_tree(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from btplan.acting import whole_goal
+
+    monkeypatch.setattr(whole_goal, "FIRST_TURN", 0.0)  # a turn after the very first tick
+    monkeypatch.setattr(whole_goal, "MIN_TURN", 600.0)  # long enough to find the plan
+    task = load(str(DOMAINS / "planner_sussman.bt"))
+    result = plan(task, timeout=3600, improve=False)
+    assert result.stats.whole_goal
+    validate(task, result.executed)
+    backchained = plan(task, improve=False)  # no time limit: no turns
+    assert not backchained.stats.whole_goal
