@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import FrozenInstanceError
+from pathlib import Path
 
 import pytest
 
@@ -82,8 +83,6 @@ def test_models_are_frozen_and_strict() -> None:
 
 
 def test_predicate_ports_are_the_predicates_parameter_names() -> None:
-    from pathlib import Path
-
     from btplan.lang import load as load_task
 
     root = Path(__file__).resolve().parents[1]

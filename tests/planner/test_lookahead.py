@@ -15,8 +15,9 @@ from btplan.acting.offline import plan
 from btplan.errors import PlanningError
 from btplan.lang import load
 from btplan.model import Atom, Task
-from btplan.planner import PlannerOptions
+from btplan.planner import AchieverIndex, PlannerOptions
 from tests.planner.test_classic import validate
+from tests.planner.test_invariants import task_of
 
 KITCHEN = """
 (define (domain kitchen)
@@ -109,9 +110,6 @@ def test_the_failed_condition_nearest_the_state_is_expanded_first(tmp_path: Path
 def test_producer_needs_are_the_producers_positive_preconditions() -> None:
     """The look-ahead's table of what each producer needs matches the producers, atom by
     atom, asked twice (the second answer is the one kept)."""
-    from btplan.planner import AchieverIndex
-    from tests.planner.test_invariants import task_of
-
     for task in (task_of("blocksworld", 4), task_of("logistics", 2)):
         relaxed = AchieverIndex(task).relaxed
         atoms = {a for action in relaxed.actions for a in action.add}

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from btplan.acting.loop import BlendedLoop
-from btplan.bt import RUNNING, Status
+from btplan.bt import RUNNING, Condition, Status
 from btplan.bt.leaves import LeafKey
 from btplan.lang import load
 from btplan.model import Atom
@@ -66,8 +66,6 @@ def test_a_state_seen_again_after_a_new_lesson_is_not_a_loop() -> None:
 def test_the_conflict_judge_is_made_again_when_guards_or_the_state_change() -> None:
     """`judge()` is kept while nothing it reads changed; a new guard or a new state
     gives a new one that knows it."""
-    from btplan.bt import Condition
-
     task = load([str(DOMAIN)])
     world = SymbolicWorld(task)
     loop = BlendedLoop(task, world)
