@@ -149,8 +149,7 @@ class BlendedLoop:
         self.expanded: set[Node] = set()
         self.dead: set[Node] = set()
         self._guards_seen: set[Node] = set()
-        self._judged: tuple[int, frozenset[Atom] | None, Judge] | None = None
-        """The last `judge()`, with the number of guards and the state it was made for."""
+        self._judged: tuple[int, frozenset[Atom] | None, Judge] | None = None  # see judge()
         self.circular: set[GroundLiteral] = set()
         self._circles = Circles()
         self._last_state: frozenset[Atom] | None = None
@@ -363,9 +362,8 @@ class BlendedLoop:
         adopt_plan(self, steps)
 
     def judge(self) -> Judge:
-        """What conflict checks know now. Made again only when a guard was added or the
-        state changed: every expansion asks, and copying the guards grew with the tree.
-        Guards are only ever added, so their number tells whether they changed."""
+        """What conflict checks know now; kept until a guard is added (guards are only
+        added: their number tells) or the state changes. Copying the guards grew with the tree."""
         state = self.world.facts() if self.options.reorder_goals else None
         last = self._judged
         if last is not None and last[0] == len(self._guards_seen) and last[1] == state:
