@@ -161,6 +161,11 @@ class Domain(Frozen):
         return {p.name: p for p in self.predicates}
 
     @cached_property
+    def predicate_ports(self) -> Mapping[str, tuple[str, ...]]:
+        """Each predicate's parameter names: the ports of its tree leaves (made often)."""
+        return {p.name: tuple(q.name for q in p.parameters) for p in self.predicates}
+
+    @cached_property
     def action_map(self) -> Mapping[str, ActionTemplate]:
         return {a.name: a for a in self.actions}
 

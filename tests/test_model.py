@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import FrozenInstanceError
+from pathlib import Path
 
 import pytest
 
@@ -79,3 +80,13 @@ def test_models_are_frozen_and_strict() -> None:
         MOVE.name = "Other"  # type: ignore[misc]
     with pytest.raises(TypeError):
         Literal(predicate="p", colour="red")  # type: ignore[call-arg]
+
+
+def test_predicate_ports_are_the_predicates_parameter_names() -> None:
+    from btplan.lang import load as load_task
+
+    root = Path(__file__).resolve().parents[1]
+    domain = load_task([str(root / "domains" / "pick_place_obstacle.bt")]).domain
+    assert domain.predicate_ports == {p.name: tuple(q.name for q in p.parameters)
+                                      for p in domain.predicates}
+    assert domain.predicate_ports  # not empty

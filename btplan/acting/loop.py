@@ -149,6 +149,7 @@ class BlendedLoop:
         self.expanded: set[Node] = set()
         self.dead: set[Node] = set()
         self._guards_seen: set[Node] = set()
+        self._judged: tuple[int, frozenset[Atom] | None, Judge] | None = None  # see judge()
         self.circular: set[GroundLiteral] = set()
         self._circles = Circles()
         self._last_state: frozenset[Atom] | None = None
@@ -361,11 +362,20 @@ class BlendedLoop:
         adopt_plan(self, steps)
 
     def judge(self) -> Judge:
+        """What conflict checks know now; kept until a guard is added (guards are only
+        added: their number tells) or the state changes. Copying the guards grew with the tree."""
+        state = self.world.facts() if self.options.reorder_goals else None
+        last = self._judged
+        if last is not None and last[0] == len(self._guards_seen) and last[1] == state:
+            return last[2]
         mutexes = self.index.mutexes if self.options.mutexes else None
-        if not self.options.reorder_goals:  # the paper: no circularity check on places
-            return Judge(self.grounding, mutexes, frozenset(self._guards_seen))
-        return Judge(self.grounding, mutexes, frozenset(self._guards_seen),
-                     self.index.relaxed, self.world.facts())
+        if state is None:  # the paper: no circularity check on places
+            judge = Judge(self.grounding, mutexes, frozenset(self._guards_seen))
+        else:
+            judge = Judge(self.grounding, mutexes, frozenset(self._guards_seen),
+                          self.index.relaxed, state)
+        self._judged = (len(self._guards_seen), state, judge)
+        return judge
 
     def _stall(self) -> None:
         """The tree failed with nothing to expand (an action failed): retry, a few times."""

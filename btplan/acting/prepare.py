@@ -46,10 +46,20 @@ class RelaxedPlans:
     every new state reads them again."""
 
     def __init__(self, relaxed: RelaxedModel) -> None:
-        self.relaxed = relaxed
+        self._relaxed = weakref.ref(relaxed)
+        """Weakly: `_PLANS` keeps this per relaxed model only while the model lives, and
+        a strong reference from the value kept every run's model (and the whole grounded
+        task behind it) alive for the rest of the process, for the garbage collector to
+        walk through again and again."""
         self._key: tuple[frozenset[Atom], tuple[Atom, ...]] | None = None
         self._needing: dict[Atom, list[GroundAction]] = {}
         self._made_by: dict[Atom, list[Producer]] = {}
+
+    @property
+    def relaxed(self) -> RelaxedModel:
+        relaxed = self._relaxed()
+        assert relaxed is not None, "asked after its relaxed model was dropped"
+        return relaxed
 
     def producers(self, atom: Atom) -> list[Producer]:
         """The relaxed model's producers of `atom`, in its order, taken apart."""

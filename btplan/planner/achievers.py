@@ -207,10 +207,7 @@ class AchieverIndex:
         """
         profile = self._profile(action)
         if profile.impossible is None:
-            mutexes = self.mutexes
-            pre = [p for p in action.preconditions if p.positive and mutexes.knows(p.atom)]
-            profile.impossible = any(
-                mutexes.exclusive(a, b) for i, a in enumerate(pre) for b in pre[i + 1:])
+            profile.impossible = self.mutexes.any_exclusive(profile.positive)
         return profile.impossible
 
     def _best(self, candidates: list[GroundAction], state: frozenset[Atom], limit: int | None,
@@ -225,9 +222,13 @@ class AchieverIndex:
         heuristic = self.options.heuristic
         cost: dict[Atom, float] | None = None
         inf = math.inf
+        profiles = self._shared.profiles  # `_profile`, written out: it runs per candidate
+        known = self.task.object_types
         scored: list[tuple[tuple[float, int, str], GroundAction]] = []
         for action in candidates:
-            profile = self._profile(action)
+            profile = profiles.get(id(action))
+            if profile is None or profile.action is not action:
+                profile = profiles[id(action)] = _Profile(action, known)
             if drop_impossible and (profile.impossible if profile.impossible is not None
                                     else self._impossible(action)):
                 continue
@@ -237,12 +238,14 @@ class AchieverIndex:
                 failing += sum(1 for p in profile.negative if not p.holds(state))
             estimate = 0.0
             if heuristic and missing:
-                if profile.unknown and any(a in profile.unknown for a in missing):
+                if profile.unknown and not profile.unknown.isdisjoint(missing):
                     estimate = float(len(missing))
                 else:
                     if cost is None:
                         cost = self.relaxed.costs(state)
-                    estimate = sum(cost.get(a, inf) for a in missing)
+                    get = cost.get
+                    for atom in missing:
+                        estimate += get(atom, inf)
             total = profile.cost + estimate
             if total < inf:
                 scored.append(((total, failing, profile.label), action))
@@ -274,8 +277,9 @@ class _Profile:
         self.positive = tuple(p.atom for p in action.preconditions if p.positive)
         """In order, a precondition written twice counted twice (as the sum always did)."""
         self.negative = tuple(p for p in action.preconditions if not p.positive)
-        self.unknown = frozenset(atom for atom in self.positive
-                                 if any(a not in known for a in atom.args))
+        has = known.__contains__
+        self.unknown = frozenset([atom for atom in self.positive
+                                  if not all(map(has, atom.args))])
 
 
 def _score(scored: tuple[tuple[float, int, str], GroundAction]) -> tuple[float, int, str]:

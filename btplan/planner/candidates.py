@@ -150,12 +150,12 @@ class StaticBindings:
             return None  # whether it is tabled does not depend on the state: asked first
         found: list[GroundAction] = []
         count = 0
+        reached = reachable.__contains__ if reachable is not None else None
         for entry, makes in zip(way.entries, way.makes):
             if entry.checks and any((atom in state) is not positive
                                     for atom, positive in entry.checks):
                 continue
-            if reachable is not None and entry.hopes and any(
-                    atom not in reachable for atom in entry.hopes):
+            if reached is not None and entry.hopes and not all(map(reached, entry.hopes)):
                 continue
             count += 1
             if count > limit:

@@ -21,13 +21,11 @@ if TYPE_CHECKING:
 
 def condition_node(literal: GroundLiteral, task: Task) -> Node:
     """The tree leaf for a literal; ports are the predicate's parameter names."""
-    predicate = task.domain.predicate_map.get(literal.atom.predicate)
-    ports = (
-        tuple(p.name for p in predicate.parameters)
-        if predicate is not None and predicate.arity == len(literal.atom.args)
-        else None
-    )
-    leaf = Condition(literal.atom.predicate, literal.atom.args, ports)
+    atom = literal.atom
+    ports = task.domain.predicate_ports.get(atom.predicate)
+    if ports is not None and len(ports) != len(atom.args):
+        ports = None
+    leaf = Condition(atom.predicate, atom.args, ports)
     return leaf if literal.positive else Inverter(leaf)
 
 

@@ -66,6 +66,7 @@ class RelaxedModel:
         self._waiting = [len(set(pre)) for pre in self._pre]
         self._free = [i for i, n in enumerate(self._waiting) if n == 0]
         self._producers: dict[Atom, list[GroundAction]] | None = None
+        self._producer_needs: dict[Atom, list[tuple[Atom, ...]]] = {}
         self._cache: dict[frozenset[Atom], dict[Atom, float]] = {}
         self._encode()
 
@@ -270,6 +271,16 @@ class RelaxedModel:
                 for added in action.add:
                     self._producers.setdefault(added, []).append(action)
         return self._producers.get(atom, [])
+
+    def producer_needs(self, atom: Atom) -> list[tuple[Atom, ...]]:
+        """The positive preconditions of each of `producers(atom)`, in that order; taken
+        apart once per atom (the look-ahead asks of every achiever it weighs)."""
+        needs = self._producer_needs.get(atom)
+        if needs is None:
+            needs = self._producer_needs[atom] = [
+                tuple([p.atom for p in action.preconditions if p.positive])
+                for action in self.producers(atom)]
+        return needs
 
     def estimate(self, state: frozenset[Atom], atoms: Iterable[Atom]) -> float:
         """Sum of h_add costs; infinite when some atom is unreachable."""

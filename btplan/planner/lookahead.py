@@ -124,9 +124,10 @@ def _back_in_one_step(lost: frozenset[Atom], after: frozenset[Atom], relaxed: Re
     hold in `after` adds it back: then `relaxed.reachable(after, lost)` holds, known
     without a search (an achiever is usually undone by its inverse: unstack what was
     stacked). keep_reachable asks this for every achiever it checks."""
+    holds = after.__contains__
     for atom in lost:
-        for producer in relaxed.producers(atom):
-            if all(p.atom in after for p in producer.preconditions if p.positive):
+        for needs in relaxed.producer_needs(atom):
+            if all(map(holds, needs)):
                 break
         else:
             return False

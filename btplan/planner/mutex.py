@@ -135,6 +135,25 @@ class Mutexes:
         i = self._index.get(atom)
         return i is not None and not self._reached >> i & 1
 
+    def any_exclusive(self, atoms: Sequence[Atom]) -> bool:
+        """Whether two of `atoms` (as positive literals) are `exclusive`, all pairs
+        asked at once: one bit test per atom against the others instead of a call per
+        pair (ranking asks it of every new achiever's preconditions)."""
+        if self.groups is not None:
+            known = [GroundLiteral(a) for a in atoms if self.knows(a)]
+            return any(self.exclusive(a, b) for i, a in enumerate(known) for b in known[i + 1:])
+        index, reached, rows = self._index, self._reached, self._rows
+        mine = 0
+        for atom in atoms:
+            i = index.get(atom)
+            if i is not None and reached >> i & 1:
+                mine |= 1 << i
+        for atom in atoms:
+            i = index.get(atom)
+            if i is not None and mine >> i & 1 and mine & ~rows[i] & ~(1 << i):
+                return True  # rows are symmetric: row i tells of every pair with i
+        return False
+
     def exclusive(self, a: GroundLiteral, b: GroundLiteral) -> bool:
         """True when `a` and `b` can never hold at the same time (as far as h^2 sees)."""
         if a.atom == b.atom:

@@ -49,6 +49,8 @@ class SymbolicWorld:
     ) -> None:
         self.task = task
         self._state: set[Atom] = set(task.initial_state)
+        self._frozen: frozenset[Atom] | None = None
+        """`facts()` while the state is unchanged; every change below clears it."""
         self._seed = seed
         self._rng: Random | None = None  # made at the first draw (see _draw)
         self._failure_probability = dict(failure_probability or {})
@@ -67,19 +69,28 @@ class SymbolicWorld:
     # --- the state ---------------------------------------------------------------------
 
     def facts(self) -> frozenset[Atom]:
-        return frozenset(self._state)
+        """The state now. The same object until the state changes: planning asks for it
+        many times per tick, and what it remembers per state (h_add costs, the atoms by
+        predicate) is found by identity or by a hash a new copy would compute again."""
+        frozen = self._frozen
+        if frozen is None:
+            frozen = self._frozen = frozenset(self._state)
+        return frozen
 
     def set_fact(self, atom: Atom) -> None:
         """An external change: `atom` becomes true."""
         self._state.add(Atom(atom[0], tuple(atom[1])))
+        self._frozen = None
 
     def clear_fact(self, atom: Atom) -> None:
         """An external change: `atom` becomes false."""
         self._state.discard(Atom(atom[0], tuple(atom[1])))
+        self._frozen = None
 
     def apply_action(self, action: GroundAction) -> None:
         """An external agent performs `action`: its effects, whatever the preconditions."""
-        self._state = set(action.apply(frozenset(self._state)))
+        self._state = set(action.apply(self.facts()))
+        self._frozen = None
 
     def fail_next(self, action_name: str, args: tuple[str, ...] | None = None) -> None:
         """Make the next tick of a matching action (any arguments when None) return FAILURE."""
@@ -151,7 +162,8 @@ class SymbolicWorld:
             self._remaining[key] = left
             return RUNNING
         del self._remaining[key]
-        self._state = set(action.apply(frozenset(self._state)))
+        self._state = set(action.apply(self.facts()))
+        self._frozen = None
         self.executed.append(action)
         return SUCCESS
 

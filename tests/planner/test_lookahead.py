@@ -14,9 +14,10 @@ import pytest
 from btplan.acting.offline import plan
 from btplan.errors import PlanningError
 from btplan.lang import load
-from btplan.model import Task
-from btplan.planner import PlannerOptions
+from btplan.model import Atom, Task
+from btplan.planner import AchieverIndex, PlannerOptions
 from tests.planner.test_classic import validate
+from tests.planner.test_invariants import task_of
 
 KITCHEN = """
 (define (domain kitchen)
@@ -104,3 +105,17 @@ def test_the_failed_condition_nearest_the_state_is_expanded_first(tmp_path: Path
     breadth = plan(task, options=replace(options, closest_first=False))
     validate(task, breadth.executed)
     assert breadth.stats.expansions > 2 * nearest.stats.expansions
+
+
+def test_producer_needs_are_the_producers_positive_preconditions() -> None:
+    """The look-ahead's table of what each producer needs matches the producers, atom by
+    atom, asked twice (the second answer is the one kept)."""
+    for task in (task_of("blocksworld", 4), task_of("logistics", 2)):
+        relaxed = AchieverIndex(task).relaxed
+        atoms = {a for action in relaxed.actions for a in action.add}
+        for atom in sorted(atoms):
+            expected = [tuple(p.atom for p in a.preconditions if p.positive)
+                        for a in relaxed.producers(atom)]
+            assert relaxed.producer_needs(atom) == expected
+            assert relaxed.producer_needs(atom) == expected
+        assert relaxed.producer_needs(Atom("nowhere", ())) == []

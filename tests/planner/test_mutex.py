@@ -62,3 +62,27 @@ def test_the_fixpoint_finds_the_pairs_of_the_definition() -> None:
             both = frozenset((a, a)) in pairs and frozenset((b, b)) in pairs
             exclusive = found.exclusive(GroundLiteral(a, True), GroundLiteral(b, True))
             assert exclusive is (both and frozenset((a, b)) not in pairs), (a, b)
+
+
+def _pairwise(mutexes: Mutexes, atoms: Sequence[Atom]) -> bool:
+    known = [GroundLiteral(a) for a in atoms if mutexes.knows(a)]
+    return any(mutexes.exclusive(a, b) for i, a in enumerate(known) for b in known[i + 1:])
+
+
+def test_all_pairs_at_once_agree_with_one_pair_at_a_time() -> None:
+    """`any_exclusive` (bit rows, or invariant groups for large tasks) says what asking
+    `exclusive` of every pair says: for every achiever's preconditions, and for every
+    set of up to three atoms, repeats and unknown atoms included."""
+    unknown = Atom("nowhere", ("x",))
+    for task in _tasks():
+        actions = AchieverIndex(task).relaxed.actions
+        for mutexes in (Mutexes(actions, task.initial_state),
+                        Mutexes(actions, task.initial_state, task.domain, h2_max_atoms=0)):
+            atoms = sorted({p.atom for a in actions for p in a.preconditions})
+            sets = [[p.atom for p in a.preconditions if p.positive] for a in actions]
+            sets += [list(c) for c in itertools.combinations(atoms[:12], 2)]
+            sets += [list(c) for c in itertools.combinations(atoms[:10], 3)]
+            sets += [[a, a] for a in atoms[:5]] + [[unknown, a] for a in atoms[:5]]
+            verdicts = [mutexes.any_exclusive(s) for s in sets]
+            assert verdicts == [_pairwise(mutexes, s) for s in sets]
+            assert any(verdicts) and not all(verdicts)

@@ -186,3 +186,23 @@ def test_the_kept_relaxed_plan_and_producers_match_computing_them_afresh(tmp_pat
         for atom in got:
             assert [p for p, _, _ in plans.producers(atom)] == index.relaxed.producers(atom)
     assert asked >= 3  # the plan had steps to compare in most states
+
+
+def test_a_runs_relaxed_model_is_freed_once_the_run_is_over(tmp_path: Path) -> None:
+    """The relaxed plans are kept per relaxed model only while the model lives: a run
+    that prepared conditions leaves nothing behind (a strong reference from the kept
+    plans kept every run's model and grounded task alive)."""
+    import gc
+    import weakref
+
+    from btplan.acting.prepare import _PLANS
+
+    task = task_of(tmp_path, "blocksworld.bt", DETOUR, "detour")
+    index = AchieverIndex(task, OPTIONS)
+    relaxed = weakref.ref(index.relaxed)
+    outcome = run(task, look_ahead=True, scope_moves=True, goal_credit=True,
+                  options=OPTIONS, models=index)
+    assert outcome.reached and relaxed() in _PLANS  # the run kept its relaxed plans
+    del outcome, index
+    gc.collect()
+    assert relaxed() is None

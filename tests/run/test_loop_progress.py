@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from btplan.acting.loop import BlendedLoop
-from btplan.bt import RUNNING, Status
+from btplan.bt import RUNNING, Condition, Status
 from btplan.bt.leaves import LeafKey
 from btplan.lang import load
 from btplan.model import Atom
@@ -61,3 +61,25 @@ def test_a_state_seen_again_after_a_new_lesson_is_not_a_loop() -> None:
     assert not circles.repeated(world, away, near, 3)
     assert not circles.repeated(world, near, away, 3)
     assert circles.repeated(world, away, near, 3)  # nothing learned since: a loop
+
+
+def test_the_conflict_judge_is_made_again_when_guards_or_the_state_change() -> None:
+    """`judge()` is kept while nothing it reads changed; a new guard or a new state
+    gives a new one that knows it."""
+    task = load([str(DOMAIN)])
+    world = SymbolicWorld(task)
+    loop = BlendedLoop(task, world)
+    first = loop.judge()
+    assert loop.judge() is first
+    assert first.state == world.facts()
+    guard = Condition("near", ("cube",))
+    loop.never_expand([guard])
+    second = loop.judge()
+    assert second is not first and guard in second.guards and guard not in first.guards
+    assert loop.judge() is second
+    loop.never_expand([guard])  # already known: nothing changed
+    assert loop.judge() is second
+    world.set_fact(PASSING)
+    third = loop.judge()
+    assert third is not second and third.state == world.facts() and PASSING in third.state
+    assert third.guards == second.guards

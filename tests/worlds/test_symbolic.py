@@ -86,3 +86,30 @@ def test_refine_answers_objects_satisfying_where_in_the_current_state() -> None:
 def test_equality_conditions_are_checked_by_value() -> None:
     w = world()
     assert w.check(("=", ("a", "a"))) and not w.check(("=", ("a", "b")))
+
+
+def test_facts_is_one_object_until_the_state_changes() -> None:
+    """Planning finds what it remembers per state by the state's identity: the world
+    hands out the same frozen state while nothing changes, and a fresh one after every
+    kind of change (an outside fact set or cleared, an outside action, a finished one)."""
+    w = world()
+    first = w.facts()
+    assert w.facts() is first
+    w.set_fact(Atom("near", ("cube",)))
+    second = w.facts()
+    assert second is not first and Atom("near", ("cube",)) in second
+    assert w.facts() is second
+    w.clear_fact(Atom("near", ("cube",)))
+    third = w.facts()
+    assert third == first and third is not second
+    w.apply_action(w.ground(("MoveTo", ("goal", "tau_goal"))))
+    fourth = w.facts()
+    assert Atom("near", ("goal",)) in fourth and fourth is not third
+    key = ("MoveTo", ("cube", "tau_cube"))
+    assert w.start(key) is RUNNING
+    assert w.facts() is fourth  # running changes nothing yet
+    w.step(key)
+    assert w.step(key) is SUCCESS
+    assert Atom("near", ("cube",)) in w.facts() and w.facts() is not fourth
+    assert fourth == frozenset(fourth)  # earlier states are left as they were
+    assert Atom("near", ("goal",)) in fourth
