@@ -90,18 +90,20 @@ class SearchTurns:
 
     On a large model one attempt of backchaining can use most of its share of the time
     limit before it fails (parking: 17-24 s of 30), and the search, which needs some
-    ten seconds there, is left too little. So once backchaining has run FIRST_TURN
-    seconds (or FIRST_TURN_SHARE of a shorter limit), the search gets a turn as long as
-    backchaining has had since the last turn, and so on: past that first wait, each gets
-    about half of the time until `until` (backchaining's share). The search resumes
-    where its last turn stopped, so no turn is lost.
+    ten seconds there, is left too little. So once backchaining has run
+    FIRST_TURN_SHARE of the time limit, the search gets a turn as long as backchaining
+    has had since the last turn, and so on: past that first wait, each gets about half
+    of the time until `until` (backchaining's share). The search resumes where its last
+    turn stopped, so no turn is lost. The first wait grows with the limit: where
+    backchaining makes steady progress (200 blocks: 486 expansions in about a minute), an early
+    turn halves its speed and lets the search's stored states grow to a gigabyte.
     """
 
     def __init__(self, last: WholeGoalSearch, started: float, limit: float, until: float) -> None:
         self.last, self.until = last, until
         self.since = started
         """When backchaining last got the time back."""
-        self.next_turn = started + min(FIRST_TURN, FIRST_TURN_SHARE * limit)
+        self.next_turn = started + FIRST_TURN_SHARE * limit
         self.turns = 0
 
     def take(self) -> list[GroundAction] | None:
@@ -116,11 +118,8 @@ class SearchTurns:
         return steps
 
 
-FIRST_TURN = 5.0
-"""Seconds of backchaining before the whole-goal search's first turn."""
-
-FIRST_TURN_SHARE = 0.15
-"""The share of a time limit before the first turn, when that is sooner than FIRST_TURN."""
+FIRST_TURN_SHARE = 0.25
+"""The share of the time limit backchaining has before the search's first turn."""
 
 MIN_TURN = 0.5
 """The shortest turn: the search's first states set up its heuristics."""

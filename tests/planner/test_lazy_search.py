@@ -176,39 +176,40 @@ def test_search_turns_come_after_the_first_wait_and_share_the_time_evenly(
     clock = _Clock()
     monkeypatch.setattr(whole_goal.time, "perf_counter", clock)
     search = _Search(clock, finds=3)
-    turns = whole_goal.SearchTurns(search, started=100.0, limit=300.0, until=200.0)  # type: ignore[arg-type]
-    clock.now = 104.0
-    assert turns.take() is None and search.turns == []  # backchaining's first 5 s
-    clock.now = 105.5
-    assert turns.take() is None and search.turns == [(105.5, 111.0)]  # as long as it waited
-    clock.now = 116.0  # backchaining's 5 s of its 5.5 s back: not yet
+    turns = whole_goal.SearchTurns(search, started=100.0, limit=30.0, until=200.0)  # type: ignore[arg-type]
+    clock.now = 107.0
+    assert turns.take() is None and search.turns == []  # a quarter of 30 s: backchaining's
+    clock.now = 107.5
+    assert turns.take() is None and search.turns == [(107.5, 115.0)]  # as long as it waited
+    clock.now = 122.0  # backchaining's 7 s of its 7.5 s back: not yet
     assert turns.take() is None and len(search.turns) == 1
-    clock.now = 117.0
-    assert turns.take() is None and search.turns[1] == (117.0, 123.0)
-    clock.now = 130.0
-    assert turns.take() == ["step"] and search.turns[2] == (130.0, 137.0)
+    clock.now = 123.0
+    assert turns.take() is None and search.turns[1] == (123.0, 131.0)
+    clock.now = 140.0
+    assert turns.take() == ["step"] and search.turns[2] == (140.0, 149.0)
     clock.now = 200.0  # backchaining's share is over: the search has the rest anyway
     assert turns.take() is None and len(search.turns) == 3
 
 
-def test_a_short_time_limit_brings_the_first_turn_sooner(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_a_longer_time_limit_leaves_backchaining_longer_alone(
+        monkeypatch: pytest.MonkeyPatch) -> None:
     from btplan.acting import whole_goal
 
     clock = _Clock()
     monkeypatch.setattr(whole_goal.time, "perf_counter", clock)
     search = _Search(clock, finds=1)
-    turns = whole_goal.SearchTurns(search, started=100.0, limit=10.0, until=108.0)  # type: ignore[arg-type]
-    clock.now = 101.4
+    turns = whole_goal.SearchTurns(search, started=100.0, limit=300.0, until=340.0)  # type: ignore[arg-type]
+    clock.now = 174.0
     assert turns.take() is None and search.turns == []
-    clock.now = 101.5  # 15% of 10 s
-    assert turns.take() == ["step"] and search.turns == [(101.5, 103.0)]
+    clock.now = 175.0
+    assert turns.take() == ["step"] and search.turns == [(175.0, 250.0)]
 
 
 def test_a_plan_found_in_a_search_turn_stops_backchaining_and_is_the_tree(
         monkeypatch: pytest.MonkeyPatch) -> None:
     from btplan.acting import whole_goal
 
-    monkeypatch.setattr(whole_goal, "FIRST_TURN", 0.0)  # a turn after the very first tick
+    monkeypatch.setattr(whole_goal, "FIRST_TURN_SHARE", 0.0)  # a turn after the first tick
     monkeypatch.setattr(whole_goal, "MIN_TURN", 600.0)  # long enough to find the plan
     task = load(str(DOMAINS / "planner_sussman.bt"))
     result = plan(task, timeout=3600, improve=False)
