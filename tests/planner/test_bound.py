@@ -7,6 +7,8 @@ from __future__ import annotations
 from collections import deque
 from pathlib import Path
 
+import pytest
+
 from btplan.acting.offline import plan
 from btplan.model import Task
 from btplan.planner import AchieverIndex
@@ -98,30 +100,19 @@ def test_a_plan_as_short_as_the_bound_is_not_searched_around(tmp_path: Path) -> 
     assert not result.stats.shortest
 
 
-def test_the_search_stops_at_a_plan_of_the_bound(tmp_path: Path) -> None:
+@pytest.mark.parametrize("balls, floor, shortest", [(2, 5, 5), (4, 10, 11)])
+def test_a_floor_near_the_plan_cuts_the_neighbourhood_short(
+        tmp_path: Path, balls: int, floor: int, shortest: int) -> None:
     """Two balls (backchained: 7 steps, shortest 5): without a floor the neighbourhood
-    grows until it holds every reachable state; with 5 it stops at the first 5-step plan."""
-    task = gripper(tmp_path=tmp_path)
+    grows until it holds every reachable state; with 5 it stops at the first 5-step plan.
+    Four balls (backchained: 13 steps, shortest 11): with a floor of 10 the 11-step plan
+    is one step above it, and the search around it stops at SLACK_STATES."""
+    task = gripper(balls=balls, tmp_path=tmp_path)
     backchained = plan(task, improve=False).executed
     found = improve(space_of(task), backchained, Limits())
-    floored = improve(space_of(task), backchained, Limits(), floor=5)
+    floored = improve(space_of(task), backchained, Limits(), floor=floor)
     assert found is not None and floored is not None
-    assert len(found.steps) == len(floored.steps) == 5
+    assert len(found.steps) == len(floored.steps) == shortest
     assert found.complete and not floored.complete
     assert floored.depth < found.depth
     validate(task, floored.steps)
-
-
-def test_a_plan_one_step_above_the_bound_is_searched_around_less(tmp_path: Path) -> None:
-    """Four balls (backchained: 13 steps, shortest 11): the neighbourhood of the 11-step
-    plan grows until it holds every reachable state (256), unless the plan is one step
-    above the floor: then it stops at SLACK_STATES."""
-    task = gripper(balls=4, tmp_path=tmp_path)
-    backchained = plan(task, improve=False).executed
-    found = improve(space_of(task), backchained, Limits())
-    near = improve(space_of(task), backchained, Limits(), floor=10)
-    assert found is not None and near is not None
-    assert len(found.steps) == len(near.steps) == 11
-    assert found.complete and not near.complete
-    assert near.depth < found.depth
-    validate(task, near.steps)

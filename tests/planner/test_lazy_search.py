@@ -7,6 +7,7 @@ Small generated problems; the counts compared are states expanded, never times.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -169,40 +170,42 @@ class _Search:
         return ["step"] if len(self.turns) == self.finds else None
 
 
-def test_search_turns_come_after_the_first_wait_and_share_the_time_evenly(
-        monkeypatch: pytest.MonkeyPatch) -> None:
+def _turns(monkeypatch: pytest.MonkeyPatch, limit: float, until: float,
+           finds: int) -> tuple[_Clock, _Search, Callable[[], object]]:
+    """SearchTurns begun at 100 s on a fake clock, with a search that finds on turn `finds`."""
     from btplan.acting import whole_goal
 
     clock = _Clock()
     monkeypatch.setattr(whole_goal.time, "perf_counter", clock)
-    search = _Search(clock, finds=3)
-    turns = whole_goal.SearchTurns(search, started=100.0, limit=30.0, until=200.0)  # type: ignore[arg-type]
+    search = _Search(clock, finds)
+    turns = whole_goal.SearchTurns(search, 100.0, limit, until)  # type: ignore[arg-type]
+    return clock, search, turns.take
+
+
+def test_search_turns_come_after_the_first_wait_and_share_the_time_evenly(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    clock, search, take = _turns(monkeypatch, limit=30.0, until=200.0, finds=3)
     clock.now = 107.0
-    assert turns.take() is None and search.turns == []  # a quarter of 30 s: backchaining's
+    assert take() is None and search.turns == []  # a quarter of 30 s: backchaining's
     clock.now = 107.5
-    assert turns.take() is None and search.turns == [(107.5, 115.0)]  # as long as it waited
+    assert take() is None and search.turns == [(107.5, 115.0)]  # as long as it waited
     clock.now = 122.0  # backchaining's 7 s of its 7.5 s back: not yet
-    assert turns.take() is None and len(search.turns) == 1
+    assert take() is None and len(search.turns) == 1
     clock.now = 123.0
-    assert turns.take() is None and search.turns[1] == (123.0, 131.0)
+    assert take() is None and search.turns[1] == (123.0, 131.0)
     clock.now = 140.0
-    assert turns.take() == ["step"] and search.turns[2] == (140.0, 149.0)
+    assert take() == ["step"] and search.turns[2] == (140.0, 149.0)
     clock.now = 200.0  # backchaining's share is over: the search has the rest anyway
-    assert turns.take() is None and len(search.turns) == 3
+    assert take() is None and len(search.turns) == 3
 
 
 def test_a_longer_time_limit_leaves_backchaining_longer_alone(
         monkeypatch: pytest.MonkeyPatch) -> None:
-    from btplan.acting import whole_goal
-
-    clock = _Clock()
-    monkeypatch.setattr(whole_goal.time, "perf_counter", clock)
-    search = _Search(clock, finds=1)
-    turns = whole_goal.SearchTurns(search, started=100.0, limit=300.0, until=340.0)  # type: ignore[arg-type]
+    clock, search, take = _turns(monkeypatch, limit=300.0, until=340.0, finds=1)
     clock.now = 174.0
-    assert turns.take() is None and search.turns == []
+    assert take() is None and search.turns == []
     clock.now = 175.0
-    assert turns.take() == ["step"] and search.turns == [(175.0, 250.0)]
+    assert take() == ["step"] and search.turns == [(175.0, 250.0)]
 
 
 def test_a_plan_found_in_a_search_turn_stops_backchaining_and_is_the_tree(
