@@ -70,11 +70,17 @@ def test_a_search_stops_after_the_states_asked_for_and_goes_on(tmp_path: Path) -
     assert run.resume() == whole
 
 
-def test_a_portfolio_takes_turns_and_returns_the_first_plan_found(tmp_path: Path) -> None:
+def _portfolio(tmp_path: Path) -> tuple[Task, Portfolio]:
+    """A 20-block problem's whole-goal search, both searches begun, none expanded."""
     task = generated(tmp_path, "blocksworld", 2, blocks=20)
     engine = AchieverIndex(task).subgoal_search
     portfolio = engine.begin(task.initial_state, task.goal_literals, portfolio=True)
     assert isinstance(portfolio, Portfolio)
+    return task, portfolio
+
+
+def test_a_portfolio_takes_turns_and_returns_the_first_plan_found(tmp_path: Path) -> None:
+    task, portfolio = _portfolio(tmp_path)
     first, second = portfolio.runs
     assert not first.landmark_preferred and second.landmark_preferred
     steps = portfolio.resume()
@@ -84,10 +90,7 @@ def test_a_portfolio_takes_turns_and_returns_the_first_plan_found(tmp_path: Path
 
 
 def test_the_turn_goes_to_the_search_that_improved_last(tmp_path: Path) -> None:
-    task = generated(tmp_path, "blocksworld", 2, blocks=20)
-    engine = AchieverIndex(task).subgoal_search
-    portfolio = engine.begin(task.initial_state, task.goal_literals, portfolio=True)
-    assert isinstance(portfolio, Portfolio)
+    task, portfolio = _portfolio(tmp_path)
     first, second = portfolio.runs
     portfolio.resume(deadline=0.0)  # a deadline long past: one turn, cut at 32 states
     assert (first.expanded, second.expanded) == (32, 0)  # ties go to the first
