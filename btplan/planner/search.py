@@ -229,7 +229,7 @@ class SearchRun:
 
     def count(self, state: int, passed: int) -> int:
         """The landmark estimate: how many landmarks are still to reach (`future`)."""
-        return bin(self.future(state, passed)).count("1")
+        return self.future(state, passed).bit_count()
 
     def _finish(self, exhausted: bool = False, plan: list[GroundAction] | None = None) -> None:
         self.done, self.exhausted, self.plan = True, exhausted, plan
@@ -260,10 +260,10 @@ class SearchRun:
             if h == INFINITE:
                 reached[state] = 0  # a dead end: never looked at again
                 continue
-            h += bin(state & negative).count("1")
+            h += (state & negative).bit_count()
             passed = reached[state] = self.progress(reached[parent], state)
             future = self.future(state, passed) if marks else 0
-            estimates = (h, bin(future).count("1") if marks else h)
+            estimates = (h, future.bit_count() if marks else h)
             if engine.improved(estimates, self.best, turns):
                 self.better_at = self.expanded
             self.expanded = engine.expanded = self.expanded + 1
