@@ -268,6 +268,14 @@ class GroundAction(Frozen):
     def key(self) -> tuple[str, tuple[str, ...]]:
         return (self.name, self.args)
 
+    @cached_property
+    def needs(self) -> tuple[Atom, ...]:
+        """The positive preconditions' atoms, in order (one written twice, twice).
+
+        Taken apart once per action: the relaxed model, ranking, the relaxed plan and
+        the look-ahead all read them, from the same grounded actions."""
+        return tuple([p.atom for p in self.preconditions if p.positive])
+
     def applicable(self, state: frozenset[Atom] | set[Atom]) -> bool:
         return all(p.holds(state) for p in self.preconditions)
 

@@ -28,9 +28,16 @@ def achievers_for(loop: LoopState, node: Node, literal: GroundLiteral,
                                     ALL if loop.banned else None)
         kept = allowed(loop, _non_circular(loop, achievers, node, literal), literal)
         return kept[:width], []
-    # Rank every candidate, so that dropping dead ends still leaves `width` of them.
-    achievers = index.achievers(literal, state, loop.world.refine, ALL)
-    achievers = allowed(loop, _non_circular(loop, achievers, node, literal), literal)
+    # Rank every candidate, so that dropping dead ends still leaves `width` of them;
+    # circular ones are dropped before ranking (the same list, cheaper).
+    if options.refine_more:
+        achievers, circular = index.achievers_avoiding(literal, state, loop.world.refine,
+                                                       pursued(node))
+        if circular:
+            loop.circular.add(literal)
+    else:
+        achievers = index.achievers(literal, state, loop.world.refine, ALL)
+    achievers = allowed(loop, achievers, literal)
     if loop.goal_credit:  # the goals their effects make true count (credit.py)
         achievers = credit_goals(achievers, literal, loop.task.goal_literals,
                                  index.relaxed, state)

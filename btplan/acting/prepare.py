@@ -87,7 +87,7 @@ Producer = tuple[GroundAction, float, tuple[Atom, ...]]
 
 
 def producers(relaxed: RelaxedModel, atom: Atom) -> list[Producer]:
-    return [(a, a.cost, tuple(p.atom for p in a.preconditions if p.positive))
+    return [(a, a.cost, a.needs)
             for a in relaxed.producers(atom)]
 
 

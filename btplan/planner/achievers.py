@@ -12,7 +12,7 @@ ranking reads from an action, mutex verdicts) is worked out once per task.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 
 from btplan.model import (
     WILDCARD,
@@ -25,6 +25,7 @@ from btplan.model import (
     matches,
 )
 from btplan.planner.candidates import StaticBindings, Way
+from btplan.planner.expand import non_circular
 from btplan.planner.grounding import Objects, bindings
 from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
@@ -169,6 +170,37 @@ class AchieverIndex:
                 for action in self.achievers(GroundLiteral(atom, False), state, refine, ALL):
                     undoing.setdefault(action.key, action)
             return self._best(list(undoing.values()), state, limit, False)
+        return self._best(self._found(condition, state, refine), state, limit,
+                          self.options.mutexes)
+
+    def achievers_avoiding(
+        self, condition: GroundLiteral, state: frozenset[Atom], refine: Refiner | None,
+        pursued: Collection[GroundLiteral],
+    ) -> tuple[list[GroundAction], bool]:
+        """`achievers(..., ALL)` without those that need a `pursued` condition
+        (expand.non_circular), and whether it had some and all were dropped.
+
+        Dropping keeps the order, so the circular ones are dropped before ranking
+        instead of after: they are never ranked, but for telling, when no other is
+        left, whether ranking would have kept one (the message of a stuck condition
+        says so)."""
+        if not condition.positive and WILDCARD in condition.atom.args:
+            ranked = self.achievers(condition, state, refine, ALL)
+            left = non_circular(ranked, pursued)
+            return left, bool(ranked) and not left
+        kept: list[GroundAction] = []
+        circular: list[GroundAction] = []
+        for action in self._found(condition, state, refine):
+            (circular if any(p in pursued for p in action.preconditions) else kept).append(action)
+        drop = self.options.mutexes
+        ranked = self._best(kept, state, ALL, drop)
+        if ranked or not circular:
+            return ranked, False
+        return [], bool(self._best(circular, state, ALL, drop, first=True))
+
+    def _found(self, condition: GroundLiteral, state: frozenset[Atom], refine: Refiner | None
+               ) -> list[GroundAction]:
+        """The groundings that make a condition without wildcards true, unranked."""
         reachable = self.relaxed.costs(state) if self.options.prune_bindings else None
         found: dict[int, GroundAction] = {}  # by identity: `ground` makes one per key
         relaxed = self._shared.relaxed  # its groundings, when something built it already
@@ -183,7 +215,7 @@ class AchieverIndex:
                 picked = self._enumerate(way, condition, state, refine, reachable)
             for action in picked:
                 found.setdefault(id(action), action)
-        return self._best(list(found.values()), state, limit, self.options.mutexes)
+        return list(found.values())
 
     def _enumerate(
         self, way: Way, condition: GroundLiteral, state: frozenset[Atom], refine: Refiner | None,
@@ -211,8 +243,9 @@ class AchieverIndex:
         return profile.impossible
 
     def _best(self, candidates: list[GroundAction], state: frozenset[Atom], limit: int | None,
-              drop_impossible: bool) -> list[GroundAction]:
-        """The candidates best first, those that cannot run or reach left out, bounded.
+              drop_impossible: bool, first: bool = False) -> list[GroundAction]:
+        """The candidates best first, those that cannot run or reach left out, bounded;
+        with `first`, only the first one found that is not left out (unranked).
 
         The rank: cost plus the h_add estimate of the preconditions false now, then how
         many preconditions fail now, then the name (no two actions share it, so the order
@@ -248,6 +281,8 @@ class AchieverIndex:
                         estimate += get(atom, inf)
             total = profile.cost + estimate
             if total < inf:
+                if first:
+                    return [action]
                 scored.append(((total, failing, profile.label), action))
         scored.sort(key=_score)
         return [a for _, a in scored][: limit or self.options.max_alternatives]
@@ -274,7 +309,7 @@ class _Profile:
         """Whether two preconditions exclude each other (`_impossible`), once asked."""
         self.cost = action.cost
         self.label = str(action)
-        self.positive = tuple(p.atom for p in action.preconditions if p.positive)
+        self.positive = action.needs
         """In order, a precondition written twice counted twice (as the sum always did)."""
         self.negative = tuple(p for p in action.preconditions if not p.positive)
         has = known.__contains__

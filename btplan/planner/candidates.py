@@ -199,7 +199,6 @@ class StaticBindings:
                 binding = dict(zip(names, action.args))
                 checks = tuple((Atom(c.predicate, tuple([binding.get(a, a) for a in c.args])),
                                 c.positive) for c in where)
-            hopes = tuple([p.atom for p in action.preconditions
-                           if p.positive and p.atom.predicate in changing])
+            hopes = tuple([atom for atom in action.needs if atom.predicate in changing])
             entries.append(_Entry(action, checks, hopes))
         return _Table(template, entries)

@@ -175,7 +175,8 @@ def pursued(condition: Node) -> set[GroundLiteral]:
     return goals
 
 
-def non_circular(achievers: Sequence[GroundAction], goals: set[GroundLiteral]) -> list[GroundAction]:
+def non_circular(achievers: Sequence[GroundAction], goals: Collection[GroundLiteral]
+                 ) -> list[GroundAction]:
     """Achievers that need none of the conditions already being pursued above."""
     return [a for a in achievers if not any(p in goals for p in a.preconditions)]
 

@@ -56,9 +56,7 @@ class RelaxedModel:
             if action.cost < math.inf:  # an undefined cost makes it inapplicable
                 binding = {p.name: a for p, a in zip(template.parameters, args)}
                 self.actions.append(_optimistic(template, binding, action))
-        self._pre: list[tuple[Atom, ...]] = [
-            tuple(p.atom for p in a.preconditions if p.positive) for a in self.actions
-        ]
+        self._pre: list[tuple[Atom, ...]] = [a.needs for a in self.actions]
         self._by_pre: dict[Atom, list[int]] = {}
         for i, pre in enumerate(self._pre):
             for atom in set(pre):
@@ -75,7 +73,7 @@ class RelaxedModel:
         per state the tree is ticked in, and hashing and comparing atoms was most of it."""
         ids: dict[Atom, int] = {}
         for action in self.actions:
-            for atom in (*(p.atom for p in action.preconditions if p.positive), *action.add):
+            for atom in (*action.needs, *action.add):
                 ids.setdefault(atom, len(ids))
         self._ids = ids
         self._atoms = list(ids)
@@ -278,8 +276,7 @@ class RelaxedModel:
         needs = self._producer_needs.get(atom)
         if needs is None:
             needs = self._producer_needs[atom] = [
-                tuple([p.atom for p in action.preconditions if p.positive])
-                for action in self.producers(atom)]
+                action.needs for action in self.producers(atom)]
         return needs
 
     def estimate(self, state: frozenset[Atom], atoms: Iterable[Atom]) -> float:
