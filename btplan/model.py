@@ -283,7 +283,9 @@ class GroundAction(Frozen):
         """True when applying this action makes `atom` false (unless it also adds it)."""
         if atom in self.add:
             return False
-        return atom in self.delete or any(matches(p, atom) for p in self.delete_patterns)
+        if atom in self.delete:
+            return True
+        return bool(self.delete_patterns) and self._pattern_hit(atom)
 
     def apply(self, state: frozenset[Atom]) -> frozenset[Atom]:
         """Delete first, then add: an effect list `not near(_), near(x)` ends with near(x)."""

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 import weakref
+from itertools import repeat
 from collections.abc import Callable, Sequence
 
 from btplan.bt import Composite, Fallback, Node
@@ -141,6 +142,7 @@ def _plan(cost: dict[Atom, float], state: frozenset[Atom], goals: Sequence[Atom]
     """relaxed_plan's steps, each with its positive preconditions, from the h_add
     costs of `state` and each atom's producers."""
     inf = math.inf
+    get, infinite = cost.get, repeat(inf)
     chosen: dict[tuple[str, tuple[str, ...]], tuple[GroundAction, tuple[Atom, ...]]] = {}
     seen: set[Atom] = set()
     todo = [g for g in goals if g not in state]
@@ -152,9 +154,9 @@ def _plan(cost: dict[Atom, float], state: frozenset[Atom], goals: Sequence[Atom]
         best: GroundAction | None = None
         best_needs: tuple[Atom, ...] = ()
         best_cost = inf
-        floor = cost.get(atom, inf)  # h_add's own value: no producer does better
+        floor = get(atom, inf)  # h_add's own value: no producer does better
         for producer, own, needs in made_by(atom):
-            value = own + sum([cost.get(p, inf) for p in needs])
+            value = own + sum(map(get, needs, infinite))  # get(p, inf) for each p
             if value < best_cost:  # ties: the first, in the model's fixed order
                 best, best_needs, best_cost = producer, needs, value
                 if value <= floor:

@@ -20,7 +20,7 @@ also not break what now follows it:
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 
 from btplan.bt import Action, Fallback, LeafKey, Node
 from btplan.bt import Sequence as SequenceNode
@@ -123,14 +123,44 @@ class Judge:
                 return True
         return self._falsified(doers, proxy) or self._falsified(own, held)
 
+    def blocked(self, held: list[GroundLiteral], ways: list[list[GroundLiteral]],
+                earlier: Node) -> bool:
+        """Whether `blocks(held, node, achiever_leaves(earlier), rule, ways)` would find a
+        conflict, without spelling any out; the earlier sibling's actions are read only
+        for a need the mutexes do not cover (most look-ups find no conflict)."""
+        if not ways:
+            return False
+        mutexes = self.mutexes
+        doers: list[Action] | None = None
+        for needs in ways:
+            hit = False
+            proxy: list[GroundLiteral] = []
+            for need in needs:
+                if mutexes is None or not mutexes.knows(need.atom):
+                    proxy.append(need)
+                elif mutexes.excluded(need, held):
+                    hit = True
+                    break
+            if not hit and proxy:
+                if doers is None:
+                    doers = achiever_leaves(earlier)
+                hit = self._falsified(doers, proxy)
+            if not hit:
+                return False  # this way can succeed
+        return True
+
     def _falsified(self, doers: list[Action], conditions: list[GroundLiteral]) -> bool:
         """Whether `threatens(doers, conditions)` would find a conflict."""
         if not conditions:
             return False
+        grounding = self.grounding
         for leaf in doers:
-            action = self.grounding.get(leaf.key)
-            if action is not None and any(falsifies(action, c) for c in conditions):
-                return True
+            action = grounding.get(leaf.key)
+            if action is None:
+                continue
+            for literal in conditions:  # falsifies(action, literal), written out
+                if action.deletes(literal.atom) if literal.positive else literal.atom in action.add:
+                    return True
         return False
 
 
@@ -225,9 +255,19 @@ def held_before(node: Node) -> list[GroundLiteral]:
 
 def find_conflicts(subtree: Node, judge: Judge) -> list[Conflict]:
     """Rules (a) and (b) for `subtree` where it stands now."""
+    return list(_conflicts(subtree, judge))
+
+
+def has_conflicts(subtree: Node, judge: Judge) -> bool:
+    """Whether `find_conflicts` would find any: stops at the first."""
+    return next(_conflicts(subtree, judge), None) is not None
+
+
+def _conflicts(subtree: Node, judge: Judge) -> Iterator[Conflict]:
+    """find_conflicts' conflicts, one earlier sibling at a time; each is first asked
+    whether it conflicts at all, and only then are its conflicts spelled out."""
     own = achiever_leaves(subtree)
     ways: list[list[GroundLiteral]] | None = None  # the same for every earlier sibling
-    found: list[Conflict] = []
     for sequence, index in sequence_slots(subtree):
         for earlier in sequence.children[:index]:
             if earlier in judge.guards:
@@ -235,10 +275,11 @@ def find_conflicts(subtree: Node, judge: Judge) -> list[Conflict]:
             held = guarantees(earlier)
             if ways is None:
                 ways = needs_by_alternative(subtree, judge.guards)
-            found += judge.blocks(held, subtree, achiever_leaves(earlier), "needed after it holds",
-                                  ways)
-            found += judge.threatens(own, held, "undoes earlier work")
-    return found
+            if judge.blocked(held, ways, earlier):
+                yield from judge.blocks(held, subtree, achiever_leaves(earlier),
+                                        "needed after it holds", ways)
+            if judge._falsified(own, held):
+                yield from judge.threatens(own, held, "undoes earlier work")
 
 
 def placement_conflicts(moved: Node, judge: Judge) -> list[Conflict]:

@@ -294,12 +294,16 @@ def unify(
     if effect.predicate != atom.predicate or len(effect.args) != len(atom.args):
         return None
     table = objects or Objects(task)
-    types = {p.name: p for p in template.parameters}
+    parameters = template.parameters
     binding: dict[str, str] = {}
     for name, value in zip(effect.args, atom.args):
         if name == "_":
             continue
-        parameter = types.get(name)
+        parameter: Parameter | None = None
+        for declared in parameters:  # a handful: cheaper than a dict built per call
+            if declared.name == name:
+                parameter = declared
+                break
         if parameter is None:
             if name != value:
                 return None

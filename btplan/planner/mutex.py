@@ -154,6 +154,26 @@ class Mutexes:
                 return True  # rows are symmetric: row i tells of every pair with i
         return False
 
+    def excluded(self, need: GroundLiteral, held: Sequence[GroundLiteral]) -> bool:
+        """`any(self.exclusive(hold, need) for hold in held)` in one call: conflict
+        checks ask it of every need against every earlier sibling's conditions."""
+        if self.groups is not None:
+            return any(self.exclusive(hold, need) for hold in held)
+        atom, positive = need
+        index, reached = self._index, self._reached
+        j = index.get(atom)
+        if not positive or j is None or not reached >> j & 1:
+            j = -1  # only its own negation excludes it
+        for hold in held:
+            if hold.atom == atom:
+                if hold.positive != positive:
+                    return True
+            elif j >= 0 and hold.positive:
+                i = index.get(hold.atom)
+                if i is not None and reached >> i & 1 and not self._rows[i] >> j & 1:
+                    return True
+        return False
+
     def exclusive(self, a: GroundLiteral, b: GroundLiteral) -> bool:
         """True when `a` and `b` can never hold at the same time (as far as h^2 sees)."""
         if a.atom == b.atom:

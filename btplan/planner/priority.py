@@ -33,6 +33,7 @@ from btplan.planner.conflicts import (
     circular_place,
     earlier_work,
     find_conflicts,
+    has_conflicts,
     placement_conflicts,
 )
 from btplan.planner.expand import condition_copy, literal_of
@@ -134,7 +135,7 @@ def resolve_conflicts(
     first = tuple(find_conflicts(subtree, judge))
     if not first:
         return Resolution((), 0)
-    if prune and prune_conflicting_alternatives(subtree, judge) and not find_conflicts(
+    if prune and prune_conflicting_alternatives(subtree, judge) and not has_conflicts(
         subtree, judge
     ):
         return Resolution(first, 0)
@@ -181,9 +182,9 @@ def prune_conflicting_alternatives(subtree: Node, judge: Judge) -> bool:
 
 
 def _settled(subtree: Node, mover: Node, judge: Judge) -> bool:
-    if find_conflicts(subtree, judge) or placement_conflicts(mover, judge):
+    if has_conflicts(subtree, judge) or placement_conflicts(mover, judge):
         return False
-    return mover is subtree or not find_conflicts(mover, judge)
+    return mover is subtree or not has_conflicts(mover, judge)
 
 
 def _ancestors(node: Node) -> list[Node]:

@@ -86,3 +86,22 @@ def test_all_pairs_at_once_agree_with_one_pair_at_a_time() -> None:
             verdicts = [mutexes.any_exclusive(s) for s in sets]
             assert verdicts == [_pairwise(mutexes, s) for s in sets]
             assert any(verdicts) and not all(verdicts)
+
+
+def test_one_need_against_many_held_agrees_with_one_pair_at_a_time() -> None:
+    """`excluded(need, held)` says what asking `exclusive(hold, need)` of each held
+    literal says: both signs, the same atom negated, unreached and unknown atoms."""
+    unknown = Atom("nowhere", ("x",))
+    for task in _tasks():
+        actions = AchieverIndex(task).relaxed.actions
+        for mutexes in (Mutexes(actions, task.initial_state),
+                        Mutexes(actions, task.initial_state, task.domain, h2_max_atoms=0)):
+            atoms = sorted({p.atom for a in actions for p in a.preconditions})[:14] + [unknown]
+            literals = [GroundLiteral(a, s) for a in atoms for s in (True, False)]
+            verdicts = []
+            for need in literals:
+                for held in itertools.combinations(literals, 2):
+                    verdict = mutexes.excluded(need, held)
+                    assert verdict == any(mutexes.exclusive(h, need) for h in held), (need, held)
+                    verdicts.append(verdict)
+            assert any(verdicts) and not all(verdicts)
