@@ -264,8 +264,10 @@ class GroundAction(Frozen):
     cost: float = 1.0
     duration: int = 1
 
-    @property
+    @cached_property
     def key(self) -> tuple[str, tuple[str, ...]]:
+        """(name, args): made once per action, read as a plain attribute after (planning
+        keys its tables by it on every expansion)."""
         return (self.name, self.args)
 
     @cached_property

@@ -75,6 +75,13 @@ class Composite(Node):
     def __init__(self, children: list[Node] | None = None, name: str = "") -> None:
         super().__init__(name)
         self._children: list[Node] = []
+        if children and type(self).insert is Composite.insert:  # `append` each, inlined
+            for child in children:
+                if child.parent is not None:
+                    raise ValueError(f"node {child.name!r} already has a parent")
+                child.parent = self
+                self._children.append(child)
+            return
         for child in children or []:
             self.append(child)
 

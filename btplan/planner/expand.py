@@ -243,7 +243,7 @@ def failed_conditions(tree: BehaviorTree, expanded: set[Node]) -> list[Node]:
                                      and type(node.children[0]) is Condition):
                 if node.status is FAILURE and node not in expanded:
                     found.append(node)
-            else:
+            elif kind is not Action:  # an action has no children to read
                 below += node.children
         level = below
     return found

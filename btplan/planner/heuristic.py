@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import heapq
 import math
+from itertools import compress
 from collections.abc import Callable, Iterable
 
 from btplan.model import ActionTemplate, Atom, GroundAction, Task, ground_literal, instantiate
@@ -104,9 +105,9 @@ class RelaxedModel:
             cost = self._sweep_levels(state)
         else:
             cost = self._sweep_heap(state)
-        inf = math.inf
-        found = {a: 0.0 for a in state}
-        found.update({atom: value for atom, value in zip(self._atoms, cost) if value < inf})
+        # {a: 0.0 for a in state}, then every atom of finite cost, iterated in C
+        found = dict.fromkeys(state, 0.0)
+        found.update(compress(zip(self._atoms, cost), map(math.inf.__gt__, cost)))
         if len(self._cache) >= COST_CACHE:
             del self._cache[next(iter(self._cache))]
         self._cache[state] = found
