@@ -100,10 +100,11 @@ def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
     prepares the truck's return)."""
     if _within(subtree, loop.optional):
         return []
-    relaxed = loop.index.relaxed
-    plans = _PLANS.get(relaxed)
-    if plans is None:
-        plans = _PLANS[relaxed] = RelaxedPlans(relaxed)
+    plans = loop.relaxed_plans
+    if plans is None:  # shared by the loops of one relaxed model; asked for once a loop
+        relaxed = loop.index.relaxed
+        plans = loop.relaxed_plans = _PLANS.get(relaxed) or _PLANS.setdefault(
+            relaxed, RelaxedPlans(relaxed))
     found = prepared(action, condition, loop.task.goal_literals, plans, loop.index.mutexes,
                      state)
     if not found:

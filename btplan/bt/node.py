@@ -111,10 +111,10 @@ class Composite(Node):
         self.insert(index, new)
 
     def index_of(self, child: Node) -> int:
-        for i, c in enumerate(self._children):
-            if c is child:
-                return i
-        raise ValueError(f"{child.name!r} is not a child of {self.name!r}")
+        try:  # nodes compare by identity: the list finds it in C
+            return self._children.index(child)
+        except ValueError:
+            raise ValueError(f"{child.name!r} is not a child of {self.name!r}") from None
 
     def halt(self, world: World) -> None:
         for child in self._children:
