@@ -58,7 +58,6 @@ from btplan.planner.lookahead import closest_first
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:  # backjump (blame), protect (an option) and rescue: when first used
-    from btplan.acting.prepare import RelaxedPlans
     from btplan.planner.backjump import Choice
     from btplan.planner.rescue import Rescuer
 
@@ -130,7 +129,7 @@ class BlendedLoop:
         self.scope_moves = scope_moves
         self.goal_credit = goal_credit
         self.optional: set[Node] = set()
-        self.relaxed_plans: RelaxedPlans | None = None
+        self.relaxed_plans: object | None = None
         """The relaxed plans of the index's relaxed model, kept once prepare.py asked."""
         """Conditions added before an achiever for another goal (btplan.acting.prepare)."""
         self.ahead: list[Node] = []

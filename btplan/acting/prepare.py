@@ -101,7 +101,7 @@ def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
     if _within(subtree, loop.optional):
         return []
     plans = loop.relaxed_plans
-    if plans is None:  # shared by the loops of one relaxed model; asked for once a loop
+    if not isinstance(plans, RelaxedPlans):  # shared by one model's loops; once a loop
         relaxed = loop.index.relaxed
         plans = loop.relaxed_plans = _PLANS.get(relaxed) or _PLANS.setdefault(
             relaxed, RelaxedPlans(relaxed))

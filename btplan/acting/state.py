@@ -23,7 +23,6 @@ else:
     Protocol = object  # a protocol only types: a plain base at run time
 
 if TYPE_CHECKING:
-    from btplan.acting.prepare import RelaxedPlans
     from btplan.planner.backjump import Choice
     from btplan.planner.rescue import Rescuer
 
@@ -81,8 +80,9 @@ class LoopState(Protocol):
     goal_credit: bool
     optional: set[Node]
     """Conditions added before an achiever for another goal's step (btplan.acting.prepare)."""
-    relaxed_plans: RelaxedPlans | None
-    """The relaxed plans of the index's relaxed model (btplan.acting.prepare), once asked."""
+    relaxed_plans: object | None
+    """btplan.acting.prepare's RelaxedPlans for the index's relaxed model, once asked
+    (typed loosely: that module sees the loop through this one)."""
     rescuer: Rescuer | None
     deadline: float | None
     searches: int
