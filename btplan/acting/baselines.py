@@ -136,16 +136,17 @@ class PlanExecutor:
 
     def _ensure_plan(self) -> bool:
         """Make sure the next step is worth starting; False when no plan is at hand."""
-        state = self.grounding.observe(self.world)
         if self.monitor == "plan":
+            state = self.grounding.observe(self.world, self.plan[self.step:])
             if self._reaches_goal(self.step, state):
                 return True
-            return self._may_call() and self._replan(state)
+            return self._may_call() and self._replan(self.grounding.observe(self.world))
         nxt = self.plan[self.step] if self.step < len(self.plan) else None
+        state = self.grounding.observe(self.world, [nxt] if nxt is not None else [])
         if not self.failed and nxt is not None and self._holds(nxt.preconditions, state):
             return True
         self.failed = False
-        return self._may_call() and self._repair(state)
+        return self._may_call() and self._repair(self.grounding.observe(self.world))
 
     # --- one tick ---------------------------------------------------------------------
 
@@ -175,6 +176,7 @@ class PlanExecutor:
                 continue
             if status is FAILURE:
                 self.failed = True
+                self.grounding.failed(action)
             return self.done()
 
 

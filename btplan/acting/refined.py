@@ -14,6 +14,7 @@ The time the world takes to answer is part of the planner call that asked.
 from __future__ import annotations
 
 import itertools
+from collections.abc import Sequence
 from typing import Any
 
 from btplan.acting.strips import Grounding, admit
@@ -57,43 +58,62 @@ class RefinedGrounding:
         """Values given for a binding that names another given value (a trajectory refined
         for MoveTo(pose1, t): the path to a spot chosen to put blue aside), with the
         objects that value was given for, through the chain (blue)."""
+        self.trusted: set[str] = set()
+        """Onward values whose measures count: an action with them failed (`failed`)."""
         self.given: dict[tuple[str, str], set[str]] = {}
         """Values given per (action, parameter)."""
         self._by_name = {a.name: a for a in task.domain.actions}
         self.unsure = {p.predicate for a in task.domain.actions for p in a.preconditions
                        if not p.positive}
         self.current: Grounding | None = None
-        self._keys: tuple[tuple[str, tuple[str, ...]], ...] = ()
+        self._keys: list[tuple[ActionTemplate, tuple[str, ...]]] = []
 
     @property
     def task(self) -> Task:
         """The task with the values refined so far as objects."""
         return self.current.task if self.current is not None else self.base
 
-    def observe(self, world: Any) -> frozenset[Atom]:
+    def observe(self, world: Any, steps: Sequence[GroundAction] | None = None
+                ) -> frozenset[Atom]:
         """The state the baseline plans and monitors with.
 
         A negative precondition on a refined value (`not blocks(_, t)`) is measured
         anew first, as the tree's condition node measures it when ticked: the world
         keeps the last measure of a path planned from elsewhere, and a cube put aside
-        since would still block it. Left out is such a fact that names an onward value
-        with the object it was given for (`blocks(blue, t)` for the path t to blue's aside
-        spot): the world measures that path from where the robot stands now, but it is
-        driven later, with blue in hand, from where blue was picked up, and planned again
-        from there; measured from here it is often blocked by the very obstacle it is for,
-        and nothing could ever put that obstacle aside. Another cube on that path blocks it.
+        since would still block it. Those of `steps` are measured (what the executor
+        monitors), or, without steps, those of every value given (before it plans).
+
+        Left out is such a fact about an onward value (`blocks(c, t)` for the path t to
+        blue's aside spot): the world measures that path from where the robot stands
+        now, but it is driven later, with blue in hand, from where blue was picked up,
+        and planned again from there; measured from here it is often blocked by blue
+        itself, or by a cube next to the robot now. The planner takes such a path as
+        free, as a task-and-motion planner takes a motion it has not tried, until a move
+        along it fails (`failed`); from then on the world's measure counts, except that
+        blue never blocks the path it is carried along.
         """
-        for predicate, args in self._measured():
-            world.check((predicate, args))
+        keys = self._measured() if steps is None else [
+            (p.atom.predicate, p.atom.args) for a in steps for p in a.preconditions
+            if not p.positive and self.values.keys() & set(p.atom.args)]
+        for key in dict.fromkeys(keys):
+            if not (self.onward.keys() - self.trusted) & set(key[1]):  # taken as free
+                world.check(key)
         facts: frozenset[Atom] = world.facts()
         if not self.onward:
             return facts
         return frozenset(f for f in facts if not self._carried(f))
 
     def _carried(self, fact: Atom) -> bool:
-        """Whether `fact` says the object a path is for stands in that path's way."""
+        """Whether `fact` is left out: it names an onward value the planner takes as free
+        (not yet driven in vain), or says the object a path is for stands in its way."""
         return fact.predicate in self.unsure and any(
-            a in self.onward and self.onward[a].intersection(fact.args) for a in fact.args)
+            a in self.onward and (a not in self.trusted or self.onward[a] & set(fact.args))
+            for a in fact.args)
+
+    def failed(self, action: GroundAction) -> None:
+        """An action with an onward value failed (a move to an aside spot found its way
+        blocked): what the world measures about that value counts from now on."""
+        self.trusted.update(a for a in action.args if a in self.onward)
 
     def _measured(self) -> list[tuple[str, tuple[str, ...]]]:
         """The negative preconditions on refined values, bound to each value given."""
@@ -117,12 +137,14 @@ class RefinedGrounding:
         """The grounding with every value the world gives now (rebuilt only when it grew)."""
         for _ in range(ROUNDS):
             task = self._with_values()
-            actions = self._actions(task, state)
+            candidates = self._candidates(task)
             if not any(v not in task.object_types for v in self.values):
                 break
-        if self.current is None or tuple(a.key for a in actions) != self._keys:
+        if self.current is None or candidates != self._keys:
+            actions = [a for t, args in candidates
+                       if (a := admit(task, t, args, self.fluent, state)) is not None]
             self.current = Grounding(task, actions)
-            self._keys = tuple(a.key for a in actions)
+            self._keys = candidates
         return self.current
 
     def _with_values(self) -> Task:
@@ -134,17 +156,16 @@ class RefinedGrounding:
             update={"objects": (*self.base.problem.objects, *extra)})
         return Task(domain=self.base.domain, problem=problem)
 
-    def _actions(self, task: Task, state: frozenset[Atom]) -> list[GroundAction]:
-        found: list[GroundAction] = []
+    def _candidates(self, task: Task) -> list[tuple[ActionTemplate, tuple[str, ...]]]:
+        """Every template with the arguments to ground it with: the task's objects for
+        ordinary parameters, the world's values (and the goal's) for refined ones."""
+        found: list[tuple[ActionTemplate, tuple[str, ...]]] = []
         for template in task.domain.actions:
             ordinary = [p for p in template.parameters if not p.refined]
             for args in itertools.product(*(task.objects_of(p.type) for p in ordinary)):
                 binding = dict(zip((p.name for p in ordinary), args))
                 choices = [self._choices(template, binding, p.name) for p in template.parameters]
-                for full in itertools.product(*choices):
-                    action = admit(task, template, full, self.fluent, state)
-                    if action is not None:
-                        found.append(action)
+                found.extend((template, full) for full in itertools.product(*choices))
         return found
 
     def _choices(self, template: ActionTemplate, binding: dict[str, str],

@@ -106,9 +106,13 @@ class Grounding:
             heuristic = self._heuristics[target] = hFFHeuristic(strips)
         return heuristic
 
-    def observe(self, world: Any) -> frozenset[Atom]:
+    def observe(self, world: Any, steps: Sequence[GroundAction] | None = None
+                ) -> frozenset[Atom]:
         """The state to plan and monitor with: the world's facts as they are."""
         return world.facts()  # type: ignore[no-any-return]
+
+    def failed(self, action: GroundAction) -> None:
+        """An action failed in the world: nothing to learn, the facts say why."""
 
     def prepare(self) -> None:
         """Build h_FF for the task's goal now, as part of the task's set-up."""

@@ -72,15 +72,21 @@ def test_grounding_asks_the_world_until_no_new_value_and_plans_around_an_obstacl
     assert "aside_blue" in grounding.task.object_types  # the values are objects
 
 
-def test_an_obstacle_does_not_block_the_path_to_its_own_aside_spot() -> None:
+def test_a_path_to_an_aside_spot_counts_as_free_until_a_move_along_it_failed() -> None:
     world = Refiner({Atom("hand_empty", ()), Atom("blocks", ("blue", "to_goal"))})
     grounding = RefinedGrounding(TASK, world)
-    grounding.plan(grounding.observe(world))
-    world.facts_now |= {Atom("blocks", ("blue", "to_aside_blue")),
-                        Atom("blocks", ("red", "to_aside_blue"))}
+    plan = grounding.plan(grounding.observe(world)) or []
+    blue, red = Atom("blocks", ("blue", "to_aside_blue")), Atom("blocks", ("red", "to_aside_blue"))
+    world.facts_now |= {blue, red}
+    world.checked.clear()
     seen = grounding.observe(world)
-    assert Atom("blocks", ("blue", "to_aside_blue")) not in seen  # carried there
-    assert Atom("blocks", ("red", "to_aside_blue")) in seen  # another cube does block it
+    assert blue not in seen and red not in seen  # measured from here, driven from elsewhere
+    assert ("blocks", ("_", "to_aside_blue")) not in world.checked
+    grounding.failed(next(a for a in plan if a.args == ("aside_blue", "to_aside_blue")))
+    seen = grounding.observe(world)
+    assert red in seen  # another cube does block it
+    assert blue not in seen  # blue is carried along it
+    assert ("blocks", ("_", "to_aside_blue")) in world.checked
 
 
 @pytest.mark.slow
