@@ -182,14 +182,25 @@ class RefinedGrounding:
             self.origin.setdefault(value, origin)
             if any(v in self.values for v in binding.values()):
                 self.onward.setdefault(value, origin)
-        named = [o for o in self._goal_values(template, name) if o not in given]
+        named = [o for o in self._goal_values(template, name, binding) if o not in given]
         return [*given, *named]
 
-    def _goal_values(self, template: ActionTemplate, name: str) -> list[str]:
-        """The objects the goal binds `name` to through an effect (on(c, l) for on(green,
-        goal): goal), as the tree binds it when it expands the goal; sorted by name."""
-        found = {g.atom.args[i] for e in template.effects if e.positive
-                 for i, a in enumerate(e.args) if a == name
-                 for g in self.base.goal_literals
-                 if g.positive and g.atom.predicate == e.predicate and len(g.atom.args) > i}
+    def _goal_values(self, template: ActionTemplate, name: str,
+                     binding: dict[str, str]) -> list[str]:
+        """The objects the goal binds `name` to through an effect whose other bound
+        arguments agree with it (on(c, l) with c = green, for the goal on(green, goal):
+        goal), as the tree binds it when it expands that goal; sorted by name."""
+        found = set()
+        free = {p.name for p in template.parameters}
+        for e in template.effects:
+            if not e.positive or name not in e.args:
+                continue
+            i = e.args.index(name)
+            for g in self.base.goal_literals:
+                if g.positive and g.atom.predicate == e.predicate \
+                        and len(g.atom.args) == len(e.args) \
+                        and all(binding.get(a, a) == v or (a in free and a not in binding)
+                                for j, (a, v) in enumerate(zip(e.args, g.atom.args))
+                                if j != i):
+                    found.add(g.atom.args[i])
         return sorted(found)

@@ -63,6 +63,8 @@ def test_grounding_asks_the_world_until_no_new_value_and_plans_around_an_obstacl
     assert plan[:4] == ["MoveTo(blue, to_blue)", "Pick(blue)",
                         "MoveTo(aside_blue, to_aside_blue)", "Place(blue, aside_blue)"]
     assert plan[-1] == "Place(green, goal)"  # the goal names where green goes
+    grounded = {str(a) for a in grounding.ground(state).actions}
+    assert "Place(blue, goal)" not in grounded  # ...and where green goes, not blue
     assert not world.checked  # no path known yet
     grounding.observe(world)
     assert ("blocks", ("_", "to_goal")) in world.checked  # measured anew, as the tree does
