@@ -131,6 +131,9 @@ class PlanExecutor:
                 self.plan, self.step = prefix + self.plan[self.step:], 0
                 return True
             if not self._may_call():
+                # No way back: the next tick replans from scratch instead of searching
+                # for it again (the tick's one call is used up).
+                self.plan, self.step = [], 0
                 return False
         return self._replan(state)
 
