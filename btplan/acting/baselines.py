@@ -3,7 +3,9 @@
 The paper's claim (Problem 1) is that a backchained BT copes with external agents more
 cheaply than re-planning; that claim is only worth something against the baselines a
 user would really pick. Both here plan with pyperplan's greedy best-first search and
-h_FF, grounded once per run, and execute the plan one step at a time in the same
+h_FF, on the task grounded once per run (btplan.acting.strips; in a world that refines
+values the task does not declare, grounded with them as they come: btplan.acting.refined),
+and execute the plan one step at a time in the same
 world, with the same agents, under the same tick budget as the blended loop:
 
 - `replan` monitors the whole remaining plan every tick and replans from scratch as
@@ -19,168 +21,25 @@ within the budget, the disturbed world had no solution in time.
 
 from __future__ import annotations
 
-import itertools
 import time
 from collections.abc import Sequence
 from typing import Any
 
-from btplan.bt import FAILURE, RUNNING, SUCCESS
-from btplan.errors import InputError, MissingExtraError
-from btplan.model import (
-    EQUALITY,
-    WILDCARD,
-    Atom,
-    GroundAction,
-    GroundLiteral,
-    Task,
-    instantiate,
+from btplan.acting.refined import RefinedGrounding, asks_world
+from btplan.acting.strips import (
+    Grounding,
+    check_strips,
+    fact_of,
+    instances,
+    require_pyperplan,
 )
+from btplan.bt import FAILURE, RUNNING, SUCCESS
+from btplan.errors import InputError
+from btplan.model import Atom, GroundAction, GroundLiteral, Task
 from btplan.records import record
 from btplan.worlds.agents import Agent, act_all
 
 BASELINES = ("replan", "repair", "replan-unlimited")
-
-
-def require_pyperplan() -> None:
-    """Refuse the baselines up front when pyperplan is missing, with the extra to install."""
-    try:
-        import pyperplan  # type: ignore[import-untyped]  # noqa: F401
-    except ImportError:
-        raise MissingExtraError(
-            "the replan and repair baselines need pyperplan: pip install 'btplan[replan]'"
-        ) from None
-
-
-def check_strips(task: Task) -> None:
-    """pyperplan states STRIPS only: positive goals (negative preconditions are compiled)."""
-    negative = [str(g) for g in task.goal_literals if not g.positive]
-    if negative:
-        raise InputError(f"the baselines plan STRIPS tasks only; this one has negative "
-                         f"goals ({', '.join(negative[:3])})", None,
-                         "compare with --method btplan only")
-
-
-def fact_of(literal: GroundLiteral) -> Atom:
-    """The STRIPS fact for a precondition: a negative one (`not blocks(_, t)`) is a fact
-    of its own, true in a state where the literal holds."""
-    return literal.atom if literal.positive else Atom(f"not {literal.atom.predicate}",
-                                                      literal.atom.args)
-
-
-class Grounding:
-    """Every grounded action of a task as pyperplan operators, built once per run.
-
-    `where` constraints on predicates that actions or agents may change become
-    preconditions; the others filter the groundings. A negative precondition becomes a
-    fact of its own (fact_of), made true by actions that delete its atom and false by
-    actions that add it; a wildcard one (`not blocks(_, t)`) becomes one such fact per
-    object the wildcard can stand for, all needed: exact STRIPS.
-    """
-
-    def __init__(self, task: Task) -> None:
-        from pyperplan.task import Operator  # type: ignore[import-untyped]
-
-        fluent = {e.predicate for a in task.domain.actions for e in a.effects}
-        state = task.initial_state
-        self.actions: list[GroundAction] = []
-        for template in task.domain.actions:
-            names = [p.name for p in template.parameters]
-            domains = [task.objects_of(p.type) for p in template.parameters]
-            for args in itertools.product(*domains):
-                binding = dict(zip(names, args))
-                extra: list[GroundLiteral] = []
-                ok = True
-                checks = [*template.constraints,
-                          *(c for c in template.preconditions if c.predicate == EQUALITY)]
-                for c in checks:
-                    ground = tuple(binding.get(a, a) for a in c.args)
-                    if c.predicate == EQUALITY:
-                        ok = (ground[0] == ground[1]) is c.positive
-                    elif c.predicate in fluent or not c.positive:
-                        extra.append(GroundLiteral(Atom(c.predicate, ground), c.positive))
-                        continue
-                    else:
-                        ok = (Atom(c.predicate, ground) in state) is c.positive
-                    if not ok:
-                        break
-                if ok:
-                    action = instantiate(template, tuple(args))
-                    pre = (*action.preconditions, *(e for e in extra if e.positive))
-                    self.actions.append(action.model_copy(update={"preconditions": pre}))
-        universe = set(state).union(*(a.add for a in self.actions))
-        universe.update(p.atom for a in self.actions for p in a.preconditions if p.positive)
-        universe.update(g.atom for g in task.goal_literals)
-        self.negatives = sorted({n for a in self.actions for p in a.preconditions
-                                 if not p.positive for n in instances(p, task)})
-        plain = frozenset(universe)
-        universe.update(fact_of(n) for n in self.negatives)
-        self.universe = frozenset(universe)
-        self.by_name = {str(a): a for a in self.actions}
-        self.operators = [
-            Operator(str(a), frozenset(str(fact_of(n)) for p in a.preconditions
-                                       for n in instances(p, task)),
-                     frozenset(str(x) for x in a.add)
-                     | {str(fact_of(n)) for n in self.negatives if _undoes(a, n)},
-                     frozenset(str(x) for x in plain if a.deletes(x))
-                     | {str(fact_of(n)) for n in self.negatives if _breaks(a, n)})
-            for a in self.actions
-        ]
-        self.facts = {str(x) for x in self.universe}
-        self.goal = frozenset(str(g.atom) for g in task.goal_literals)
-        self._heuristics: dict[frozenset[str], Any] = {}
-
-    def _strips(self, state: frozenset[Atom], target: frozenset[str]) -> Any:
-        from pyperplan.task import Task as StripsTask
-
-        init = frozenset(str(x) for x in state if x in self.universe) | {
-            str(fact_of(n)) for n in self.negatives if n.holds(state)}
-        return StripsTask("replan", self.facts, init, target, self.operators)
-
-    def _heuristic(self, strips: Any, target: frozenset[str]) -> Any:
-        """h_FF for `target`: it depends on the goal only, not on the initial state."""
-        from pyperplan.heuristics.relaxation import hFFHeuristic  # type: ignore[import-untyped]
-
-        heuristic = self._heuristics.get(target)
-        if heuristic is None:
-            heuristic = self._heuristics[target] = hFFHeuristic(strips)
-        return heuristic
-
-    def prepare(self) -> None:
-        """Build h_FF for the task's goal now, as part of the task's set-up."""
-        self._heuristic(self._strips(frozenset(), self.goal), self.goal)
-
-    def plan(self, state: frozenset[Atom], goal: frozenset[str] | None = None
-             ) -> list[GroundAction] | None:
-        """A plan from `state` to `goal` (the task's by default) by GBFS with h_FF, or None."""
-        from pyperplan.search import greedy_best_first_search  # type: ignore[import-untyped]
-
-        target = self.goal if goal is None else goal
-        strips = self._strips(state, target)
-        heuristic = self._heuristic(strips, target)
-        found = greedy_best_first_search(strips, heuristic)
-        return None if found is None else [self.by_name[op.name] for op in found]
-
-
-def instances(literal: GroundLiteral, task: Task) -> list[GroundLiteral]:
-    """A precondition as plain literals: `not blocks(_, t)` is `not blocks(o, t)` for
-    every object o the wildcard can stand for (the predicate's parameter type)."""
-    if literal.positive or WILDCARD not in literal.atom.args:
-        return [literal]
-    declared = task.domain.predicate_map[literal.atom.predicate].parameters
-    choices = [task.objects_of(p.type) if a == WILDCARD else (a,)
-               for a, p in zip(literal.atom.args, declared)]
-    return [GroundLiteral(Atom(literal.atom.predicate, args), False)
-            for args in itertools.product(*choices)]
-
-
-def _undoes(action: GroundAction, negative: GroundLiteral) -> bool:
-    """Whether `action` makes the negated atom false."""
-    return action.deletes(negative.atom)
-
-
-def _breaks(action: GroundAction, negative: GroundLiteral) -> bool:
-    """Whether `action` makes the negated atom true."""
-    return negative.atom in action.add
 
 
 @record(slots=True)
@@ -207,8 +66,8 @@ class PlanExecutor:
     per tick (None: unbounded).
     """
 
-    def __init__(self, task: Task, world: Any, grounding: Grounding, monitor: str,
-                 per_tick: int | None = 1) -> None:
+    def __init__(self, task: Task, world: Any, grounding: Grounding | RefinedGrounding,
+                 monitor: str, per_tick: int | None = 1) -> None:
         self.task, self.world, self.grounding = task, world, grounding
         self.monitor, self.per_tick = monitor, per_tick
         self.plan: list[GroundAction] = []
@@ -265,28 +124,32 @@ class PlanExecutor:
             if self._reaches_goal(start, state):
                 self.step = start
                 return True
-        need = _regress(self.plan[self.step:], self.task)
+        need = _regress(self.plan[self.step:], self.grounding.task)
         if need is not None and self.step < len(self.plan):
             prefix = self._call(state, frozenset(str(a) for a in need))
             if prefix is not None:
                 self.plan, self.step = prefix + self.plan[self.step:], 0
                 return True
             if not self._may_call():
+                # No way back: the next tick replans from scratch instead of searching
+                # for it again (the tick's one call is used up).
+                self.plan, self.step = [], 0
                 return False
         return self._replan(state)
 
     def _ensure_plan(self) -> bool:
         """Make sure the next step is worth starting; False when no plan is at hand."""
-        state = self.world.facts()
         if self.monitor == "plan":
+            state = self.grounding.observe(self.world, self.plan[self.step:])
             if self._reaches_goal(self.step, state):
                 return True
-            return self._may_call() and self._replan(state)
+            return self._may_call() and self._replan(self.grounding.observe(self.world))
         nxt = self.plan[self.step] if self.step < len(self.plan) else None
+        state = self.grounding.observe(self.world, [nxt] if nxt is not None else [])
         if not self.failed and nxt is not None and self._holds(nxt.preconditions, state):
             return True
         self.failed = False
-        return self._may_call() and self._repair(state)
+        return self._may_call() and self._repair(self.grounding.observe(self.world))
 
     # --- one tick ---------------------------------------------------------------------
 
@@ -316,6 +179,7 @@ class PlanExecutor:
                 continue
             if status is FAILURE:
                 self.failed = True
+                self.grounding.failed(action)
             return self.done()
 
 
@@ -331,19 +195,23 @@ def _regress(rest: Sequence[GroundAction], task: Task) -> frozenset[Atom] | None
 
 
 def run_baseline(task: Task, world: Any, agents: Sequence[Agent], method: str,
-                 max_ticks: int, grounding: Grounding | None = None) -> BaselineOutcome:
+                 max_ticks: int, grounding: Grounding | RefinedGrounding | None = None
+                 ) -> BaselineOutcome:
     """Execute `method` (one of BASELINES) in `world` with `agents` acting before each tick.
 
     Grounding the task (and h_FF for its goal) is timed apart, as `setup_seconds`:
     it depends on the task only, as the blended loop's relaxed model does; the
-    searches are `planning_seconds`.
+    searches are `planning_seconds`. When the world supplies values the task does not
+    declare (trajectories in the simulator), grounding asks it for them inside each
+    planner call (btplan.acting.refined), and that time is planning time.
     """
     if method not in BASELINES:
         raise InputError(f"unknown baseline '{method}'", None, "one of " + ", ".join(BASELINES))
     require_pyperplan()
     check_strips(task)
     started = time.process_time()
-    grounding = grounding or Grounding(task)
+    if grounding is None:
+        grounding = RefinedGrounding(task, world) if asks_world(task) else Grounding(task)
     grounding.prepare()
     setup = time.process_time() - started
     executor = PlanExecutor(task, world, grounding, "step" if method == "repair" else "plan",

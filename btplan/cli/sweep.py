@@ -56,7 +56,7 @@ def _explain(job: Job, rows: list[Row], execute: Callable[[list[pool.Run], list[
 
     reference = explain.references(rows)
     todo = explain.needed(rows)
-    if todo and job.sim == "symbolic" and _baselines_apply(job):
+    if todo and _baselines_apply(job):
         progress.update(task, total=(progress.tasks[0].total or 0) + len(todo))
         extra: list[Row] = []
         execute(todo, extra)
@@ -65,7 +65,7 @@ def _explain(job: Job, rows: list[Row], execute: Callable[[list[pool.Run], list[
 
 
 def _baselines_apply(job: Job) -> bool:
-    from btplan.acting.baselines import check_strips, require_pyperplan
+    from btplan.acting.strips import check_strips, require_pyperplan
     from btplan.sweep.runs import prepared
 
     try:
@@ -177,7 +177,8 @@ def sweep(
         TimeRemainingColumn,
     )
 
-    from btplan.acting.baselines import BASELINES, require_pyperplan
+    from btplan.acting.baselines import BASELINES
+    from btplan.acting.strips import require_pyperplan
     from btplan.shipped import resolve
     from btplan.sweep import explain, output, pool
     from btplan.sweep.runs import Job, check_methods, check_sim, prepared

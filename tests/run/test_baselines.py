@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -64,3 +65,19 @@ def test_growing_the_tree_within_a_tick_acts_as_soon_as_a_planner_would() -> Non
     assert (paper.ticks, eager.ticks, planned.ticks) == (11, 7, 7)
     assert [str(a) for a in eager.executed] == PLAN
     assert len(eager.summary().expansions) == 4
+
+
+def test_repair_replans_from_scratch_once_no_way_back_is_found() -> None:
+    """A prefix search that finds nothing uses up the tick's call; the next tick must
+    replan from scratch rather than search for the same way back again and again."""
+    from btplan.acting.strips import Grounding
+
+    class NoWayBack(Grounding):
+        def plan(self, state: frozenset[Any], goal: frozenset[str] | None = None) -> Any:
+            return None if goal is not None else super().plan(state, goal)
+
+    world = SymbolicWorld(TASK, seed=0)
+    agents = agents_from_specs([parse_spec("undo:MoveTo@4")], 0)
+    out = run_baseline(TASK, world, agents, "repair", 200, grounding=NoWayBack(TASK))
+    assert out.reached and out.planner_calls == 3  # the plan, the way back, a new plan
+    assert [str(a) for a in world.executed][-2:] == PLAN[-2:]

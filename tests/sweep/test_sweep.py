@@ -159,14 +159,6 @@ def test_intervals() -> None:
     assert w.value == 1.0 and 0.69 < w.low < 0.73 and w.high == pytest.approx(1.0)
 
 
-def test_baselines_are_refused_in_the_simulator(tmp_path: Path) -> None:
-    result = runner.invoke(app, ["sweep", str(DOMAINS / "youbot.bt"), "--sim", "pybullet",
-                                 "--scenario", "scene", "--seeds", "1", "--rates", "0",
-                                 "--method", "btplan,replan", "-o", str(tmp_path / "r.csv")])
-    assert result.exit_code == 2
-    assert "the replan baseline runs in the symbolic world only" in result.stderr
-
-
 def test_a_scenario_the_simulator_cannot_serve_is_refused_before_any_run(
         tmp_path: Path) -> None:
     out = tmp_path / "r.csv"
