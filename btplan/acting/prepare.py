@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import math
 import weakref
-from itertools import repeat
 from collections.abc import Callable, Sequence
+from itertools import repeat
 
 from btplan.bt import Composite, Fallback, Node
 from btplan.model import Atom, GroundAction, GroundLiteral, Task
@@ -101,10 +101,12 @@ def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
     if _within(subtree, loop.optional):
         return []
     plans = loop.relaxed_plans
-    if not isinstance(plans, RelaxedPlans):  # shared by one model's loops; once a loop
+    if not isinstance(plans, RelaxedPlans):  # the loop keeps what its model's loops share
         relaxed = loop.index.relaxed
-        plans = loop.relaxed_plans = _PLANS.get(relaxed) or _PLANS.setdefault(
-            relaxed, RelaxedPlans(relaxed))
+        plans = _PLANS.get(relaxed)
+        if plans is None:
+            plans = _PLANS[relaxed] = RelaxedPlans(relaxed)
+        loop.relaxed_plans = plans
     found = prepared(action, condition, loop.task.goal_literals, plans, loop.index.mutexes,
                      state)
     if not found:

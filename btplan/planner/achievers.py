@@ -25,7 +25,7 @@ from btplan.model import (
     matches,
 )
 from btplan.planner.candidates import StaticBindings, Way
-from btplan.planner.expand import non_circular
+from btplan.planner.expand import circular, non_circular
 from btplan.planner.grounding import Objects, bindings
 from btplan.planner.heuristic import RelaxedModel
 from btplan.planner.mutex import Mutexes
@@ -189,14 +189,14 @@ class AchieverIndex:
             left = non_circular(ranked, pursued)
             return left, bool(ranked) and not left
         kept: list[GroundAction] = []
-        circular: list[GroundAction] = []
+        dropped: list[GroundAction] = []
         for action in self._found(condition, state, refine):
-            (circular if any(p in pursued for p in action.preconditions) else kept).append(action)
+            (dropped if circular(action, pursued) else kept).append(action)
         drop = self.options.mutexes
         ranked = self._best(kept, state, ALL, drop)
-        if ranked or not circular:
+        if ranked or not dropped:
             return ranked, False
-        return [], bool(self._best(circular, state, ALL, drop, first=True))
+        return [], bool(self._best(dropped, state, ALL, drop, first=True))
 
     def _found(self, condition: GroundLiteral, state: frozenset[Atom], refine: Refiner | None
                ) -> list[GroundAction]:

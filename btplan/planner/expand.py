@@ -178,7 +178,12 @@ def pursued(condition: Node) -> set[GroundLiteral]:
 def non_circular(achievers: Sequence[GroundAction], goals: Collection[GroundLiteral]
                  ) -> list[GroundAction]:
     """Achievers that need none of the conditions already being pursued above."""
-    return [a for a in achievers if not any(p in goals for p in a.preconditions)]
+    return [a for a in achievers if not circular(a, goals)]
+
+
+def circular(action: GroundAction, goals: Collection[GroundLiteral]) -> bool:
+    """Whether `action` needs a condition already being pursued above."""
+    return any(p in goals for p in action.preconditions)
 
 
 def not_through_pursued(
