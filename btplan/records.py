@@ -20,9 +20,8 @@ from operator import attrgetter
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:  # `typing` is left unimported to run: it took 4 ms of a small `btplan plan`
-    from typing import Any, TypeVar
+    from typing import Any, TypeVar, overload
     from typing import dataclass_transform as dataclass_transform
-    from typing import overload
 
     T = TypeVar("T")
 else:

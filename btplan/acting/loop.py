@@ -15,10 +15,10 @@ from collections.abc import Callable
 
 from btplan.acting.ahead import later_false
 from btplan.acting.choice import achievers_for
-from btplan.acting.prepare import give_up, prepare_before
 from btplan.acting.diagnosis import failing_actions, loop_reason, most_expanded, no_achiever_reason
 from btplan.acting.early import expand_ahead, expand_broken
 from btplan.acting.finish import FinishFirst
+from btplan.acting.prepare import give_up, prepare_before
 from btplan.acting.progress import Circles
 from btplan.acting.protect import protect
 from btplan.acting.regrow import reexpand
@@ -129,9 +129,9 @@ class BlendedLoop:
         self.scope_moves = scope_moves
         self.goal_credit = goal_credit
         self.optional: set[Node] = set()
+        """Conditions added before an achiever for another goal (btplan.acting.prepare)."""
         self.relaxed_plans: object | None = None
         """The relaxed plans of the index's relaxed model, kept once prepare.py asked."""
-        """Conditions added before an achiever for another goal (btplan.acting.prepare)."""
         self.ahead: list[Node] = []
         self.world = world
         self.options = options or PlannerOptions()

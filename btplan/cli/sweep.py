@@ -12,10 +12,10 @@ from typing import TYPE_CHECKING, Annotated, Any
 import typer
 from typer.core import TyperCommand
 
-from btplan.cli.typer_app import app, guarded, stderr
 from btplan.cli.console import escape
 from btplan.cli.outputs import Output, check_outputs
 from btplan.cli.run import Sim
+from btplan.cli.typer_app import app, guarded, stderr
 from btplan.errors import BtplanError, InputError, Span
 
 if TYPE_CHECKING:

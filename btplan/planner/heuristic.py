@@ -14,13 +14,12 @@ from __future__ import annotations
 
 import heapq
 import math
-from itertools import compress
 from collections.abc import Callable, Iterable
+from itertools import compress
 
 from btplan.model import ActionTemplate, Atom, GroundAction, Task, ground_literal, instantiate
 from btplan.planner.grounding import PLACEHOLDER, Objects, bindings
 from btplan.planner.reach import building, reachable_bindings
-
 
 COST_CACHE = 8
 """States whose h_add costs are kept (planning goes back and forth between a few)."""

@@ -33,7 +33,6 @@ from btplan.model import GroundAction
 from btplan.planner.neighbourhood import Limits, Neighbourhood, OutOfTime, PlanSpace
 from btplan.records import record
 
-
 PATIENCE = 10
 """The search gives up once a neighbourhood holds this many times the states of the
 one that last made the plan better (or of the plan's trajectory), and at least

@@ -23,7 +23,6 @@ from btplan.model import (
     Literal,
     Parameter,
     Task,
-    instantiate,
     matches,
 )
 

@@ -12,8 +12,8 @@ import math
 import time
 
 from btplan.worlds.pybullet import motion, samplers
-from btplan.worlds.pybullet.motion import Pose2
 from btplan.worlds.pybullet.geometry import distance
+from btplan.worlds.pybullet.motion import Pose2
 from btplan.worlds.pybullet.paths import CHECK_FROM, DRIVE_FROM, STALE_GOAL, Trajectory
 from btplan.worlds.pybullet.scene import Point
 from btplan.worlds.pybullet.state import SceneState
