@@ -197,6 +197,8 @@ def sweep(
         raise InputError("--timeout applies to local workers, not to --ray",
                          Span("--timeout", 1, 1), "leave one of them out")
     output.check_output(output_path)
+    if plot is not None:
+        output.check_plot(plot)
     job = Job(tuple(files), scenario, sim.value, max_ticks)
     prepared(job)  # bad domain files or scenarios are refused here, not in every worker
     check_sim(job)

@@ -8,19 +8,19 @@ first; files are written whole or not at all.
 from __future__ import annotations
 
 import csv
+import importlib.util
 import io
 import math
-import os
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
 from btplan.errors import InputError, MissingExtraError, Span
-from btplan.io import write_atomic
+from btplan.io import write_atomic, write_bytes_atomic
 from btplan.sweep.runs import COLUMNS, Row
 from btplan.sweep.stats import Estimate, Point
 
 FORMATS = (".csv", ".parquet")
+PLOT_FORMATS = (".png", ".svg", ".pdf")
 
 
 def check_output(path: str) -> None:
@@ -34,6 +34,19 @@ def check_output(path: str) -> None:
         raise InputError("the folder for this output does not exist", Span(path, 1, 1))
     if suffix == ".parquet":
         _pyarrow()
+
+
+def check_plot(path: str) -> None:
+    """Refuse a plot we could not draw, before the runs: the rows would be written, but
+    the plot asked for would be lost to a format or a package found missing at the end."""
+    if Path(path).suffix.lower() not in PLOT_FORMATS:
+        raise InputError(f"cannot tell the image format of '{path}'", Span("--plot", 1, 1),
+                         "name it .png, .svg or .pdf")
+    if importlib.util.find_spec("matplotlib") is None:
+        raise MissingExtraError(MATPLOTLIB_MISSING)
+
+
+MATPLOTLIB_MISSING = "--plot needs matplotlib: pip install 'btplan[bench]'"
 
 
 def _pyarrow() -> None:
@@ -68,16 +81,9 @@ def _write_parquet(path: str, rows: Sequence[Row]) -> None:
     import pyarrow.parquet as pq  # type: ignore[import-untyped]
 
     table = pa.Table.from_pylist([{k: r.get(k) for k in COLUMNS} for r in rows])
-    target = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp",
-                               dir=target.parent if str(target.parent) else ".")
-    os.close(fd)
-    try:
-        pq.write_table(table, tmp)
-        os.replace(tmp, target)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+    sink = pa.BufferOutputStream()
+    pq.write_table(table, sink)
+    write_bytes_atomic(path, sink.getvalue().to_pybytes())  # whole, with the usual mode
 
 
 def read_rows(path: str) -> list[Row]:
@@ -139,7 +145,7 @@ def plot(points: Sequence[Point], path: str) -> None:
     try:
         import matplotlib
     except ImportError:
-        raise MissingExtraError("--plot needs matplotlib: pip install 'btplan[bench]'") from None
+        raise MissingExtraError(MATPLOTLIB_MISSING) from None
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -168,14 +174,9 @@ def plot(points: Sequence[Point], path: str) -> None:
             if i == 0:
                 ax.legend(fontsize=7)
     fig.tight_layout()
-    target = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix,
-                               dir=target.parent if str(target.parent) else ".")
-    os.close(fd)
+    image = io.BytesIO()
     try:
-        fig.savefig(tmp, dpi=110)
-        os.replace(tmp, target)
+        fig.savefig(image, dpi=110, format=Path(path).suffix.lower().lstrip("."))
     finally:
         plt.close(fig)
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+    write_bytes_atomic(path, image.getvalue())  # whole, with the usual mode

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import os
 import signal
+import stat
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -120,7 +122,17 @@ def test_a_stopped_sweep_keeps_the_rows_already_done(
     assert signal.getsignal(signal.SIGTERM) is before
 
 
-def test_parquet_rows_read_back(tmp_path: Path) -> None:
+@pytest.fixture
+def umask_022() -> Iterator[None]:
+    """The usual umask, so that an output's mode says whether it was left private."""
+    before = os.umask(0o022)
+    try:
+        yield
+    finally:
+        os.umask(before)
+
+
+def test_parquet_rows_read_back(tmp_path: Path, umask_022: None) -> None:
     pytest.importorskip("pyarrow")
     out = tmp_path / "rows.parquet"
     result = runner.invoke(app, ["sweep", OBSTACLE, "--scenario", "obstacle", "--seeds", "2",
@@ -129,6 +141,19 @@ def test_parquet_rows_read_back(tmp_path: Path) -> None:
     assert result.exit_code == 0, result.output
     assert [(r["method"], r["seed"], r["ticks"]) for r in read_rows(str(out))] == [
         ("repair", 0, 7), ("repair", 1, 7)]
+    assert stat.S_IMODE(out.stat().st_mode) == 0o644  # as `open` makes it, not private
+
+
+def test_the_plot_is_drawn_whole_with_the_usual_mode(tmp_path: Path, umask_022: None) -> None:
+    pytest.importorskip("matplotlib")
+    image = tmp_path / "rows.png"
+    result = runner.invoke(app, ["sweep", OBSTACLE, "--scenario", "obstacle", "--seeds", "2",
+                                 "--rates", "0,0.1", "--method", "btplan", "-j", "1", "-o",
+                                 str(tmp_path / "rows.csv"), "--plot", str(image), "-q"])
+    assert result.exit_code == 0, result.output
+    assert image.read_bytes().startswith(b"\x89PNG")
+    assert stat.S_IMODE(image.stat().st_mode) == 0o644
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rows.csv", "rows.png"]
 
 
 def test_missing_extras_and_bad_flags_are_one_clean_line(
@@ -148,7 +173,14 @@ def test_missing_extras_and_bad_flags_are_one_clean_line(
     assert "unknown scenario 'obstacel' (did you mean 'obstacle'?)" in result.stderr
     result = runner.invoke(app, [*base, "--method", "btplan", "-o", str(tmp_path / "r.txt")])
     assert result.exit_code == 2 and "name it .csv or .parquet" in result.stderr
-    assert not list(tmp_path.iterdir())
+    csv_out = ["--method", "btplan", "-o", str(tmp_path / "r.csv")]
+    result = runner.invoke(app, [*base, *csv_out, "--plot", str(tmp_path / "p.txt")])
+    assert result.exit_code == 2 and "name it .png, .svg or .pdf" in result.stderr
+    monkeypatch.setitem(sys.modules, "matplotlib", None)
+    result = runner.invoke(app, [*base, *csv_out, "--plot", str(tmp_path / "p.png")])
+    assert result.exit_code == 2
+    assert "--plot needs matplotlib: pip install 'btplan[bench]'" in result.stderr
+    assert not list(tmp_path.iterdir())  # refused before any run: no rows written either
 
 
 def test_intervals() -> None:
