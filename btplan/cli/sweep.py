@@ -156,7 +156,8 @@ def sweep(
     max_ticks: Annotated[int | None, typer.Option(
         min=1, metavar="N", help="Tick budget per run (default: the scenario's).")] = None,
     plot: Annotated[str | None, typer.Option(
-        metavar="OUT.png", help="Draw success, planning time and ticks against rate.")] = None,
+        metavar="OUT.png", help="Draw success, planning time and ticks against rate "
+                                "(.png, .svg or .pdf).")] = None,
     timeout: Annotated[float | None, typer.Option(
         metavar="SECONDS", help="Stop a run after this long (wall clock): an error row. "
                                 "Local workers only.")] = None,
