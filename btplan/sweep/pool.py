@@ -172,7 +172,9 @@ def run_ray(job: Job, runs: Sequence[Run], on_row: OnRow, address: str | None,
         try:
             ray.init(**kwargs)
         except (ValueError, ConnectionError, RuntimeError) as error:
-            raise WorldError(f"cannot start or reach Ray ({error})") from None
+            hint = (f"; is the cluster up (`ray status --address {address}`)? one started with "
+                    "token authentication needs RAY_AUTH_MODE=token here too" if address else "")
+            raise WorldError(f"cannot start or reach Ray ({error}){hint}") from None
     try:
         remote = ray.remote(max_retries=ATTEMPTS - 1)(run_one)
         pending = {remote.remote(job, *run): run for run in runs}

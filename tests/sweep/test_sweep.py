@@ -53,6 +53,25 @@ def test_a_local_ray_gives_the_same_rows(serial_rows: list[Row]) -> None:
     assert untimed(rows) == untimed(serial_rows)
 
 
+def test_a_cluster_that_cannot_be_reached_is_one_line_with_a_hint(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    ray = pytest.importorskip("ray")
+
+    def refused(**kwargs: Any) -> None:
+        raise ConnectionError(f"Failed to connect to Ray cluster at {kwargs['address']}")
+
+    monkeypatch.setattr(ray, "is_initialized", lambda: False)
+    monkeypatch.setattr(ray, "init", refused)
+    result = runner.invoke(app, ["sweep", OBSTACLE, "--seeds", "0:2", "--rates", "0", "-q",
+                                 "--method", "btplan", "--ray", "head:6379",
+                                 "-o", str(tmp_path / "r.csv")])
+    assert result.exit_code != 0 and "Traceback" not in result.stderr
+    assert result.stderr.count("\n") == 1
+    assert "cannot start or reach Ray (Failed to connect to Ray cluster at head:6379)" in (
+        result.stderr)
+    assert "needs RAY_AUTH_MODE=token here too" in result.stderr
+
+
 def test_a_killed_worker_loses_only_its_run_which_is_retried(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     marker = tmp_path / "killed"
