@@ -8,6 +8,7 @@ from collections.abc import Iterator
 import pytest
 from sim_scenes import YOUBOT_SCENE, youbot_task
 
+from btplan.bt import FAILURE
 from btplan.worlds.pybullet import PyBulletWorld, motion, open_world
 from btplan.worlds.pybullet.geometry import distance
 
@@ -62,3 +63,16 @@ def test_a_move_planned_from_beside_the_doorway_wall_leaves_it_first(
     assert head == list(path[:len(head)]) and len(head) <= 3  # a few centimetres out, then free
     assert not youbot.check(("blocks", ("_", name)))
 
+
+def test_a_move_to_a_cube_no_pose_reaches_fails_at_once_and_says_why(
+        youbot: PyBulletWorld) -> None:
+    """Green pushed out of the scene's bounds (as the scene's pusher did in a shove run):
+    the move used to drive its old path from where that began, then again, for hundreds
+    of ticks; it must fail on its first tick, where it stands."""
+    name = trajectory_to(youbot, "green")
+    state = youbot.state
+    state.put("green", (4.5, -3.8))
+    start = state.base
+    assert youbot.start(("MoveTo", ("green", name))) is FAILURE
+    assert state.base == start
+    assert youbot.reasons[-1][1] == "no free pose next to green to drive to"
