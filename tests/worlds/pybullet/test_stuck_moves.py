@@ -57,7 +57,7 @@ def test_a_move_planned_from_beside_the_doorway_wall_leaves_it_first(
     assert not state.sim.base_free(BESIDE_THE_DOORWAY[0], BESIDE_THE_DOORWAY[1], [])
     name = trajectory_to(youbot, "goal")
     path = state.trajectories[name].path
-    assert path and path[0] == state.base and youbot.routes.escaped == 1
+    assert path and path[0] == state.base and youbot.stats()["paths_escaped"] == 1
     assert distance(path[-1], state.location("goal")) < 1.0
     head = [q for q in path if not state.sim.base_free(q[0], q[1], [])]
     assert head == list(path[:len(head)]) and len(head) <= 3  # a few centimetres out, then free
