@@ -148,6 +148,30 @@ def plan_se2(
         del setup, info, checker, s, g, space
 
 
+def escape(start: Pose2, valid: Callable[[float, float], bool], reach: float,
+           step: float = 0.01, directions: int = 16) -> Pose2 | None:
+    """The valid state nearest `start` within `reach`, for a start the checker rejects.
+
+    The robot's footprint is a conservative disc: a base halted on a path that grazed a
+    wall between two of OMPL's checks, or beside a cube pushed against it, stands where
+    the disc touches something though nothing collides. A planner that rejects such a
+    start finds no path from there to anywhere, and the robot is stuck for good. As
+    motion planners do with a start in collision, the measured start is accepted and the
+    path leaves it in a straight line to the nearest valid state: rings of growing
+    radius, `step` metres apart, so the line's points every `step` before it were
+    rejected too (it moves out of the grazing, never through an obstacle, for a `reach`
+    well under the footprint's radius). None when nothing within `reach` is valid.
+    """
+    for k in range(1, math.floor(reach / step + 1e-9) + 1):
+        r = k * step
+        for j in range(directions):
+            a = start[2] + math.tau * j / directions
+            x, y = start[0] + r * math.cos(a), start[1] + r * math.sin(a)
+            if valid(x, y):
+                return (x, y, start[2])
+    return None
+
+
 def densify(
     points: list[tuple[float, float]], start: Pose2, goal: Pose2, step: float
 ) -> tuple[Pose2, ...]:

@@ -32,6 +32,7 @@ STALL_SECONDS = 0.6   # a push that gains less than STALL_GAIN in this long is g
 STALL_GAIN = 0.01
 MASS = 3.0
 PLAY = 0.006          # m between a cube and each side of the pocket
+ESCAPE = 0.3          # m the pusher may move straight off a start too close to the robot
 PUSHER_ITERATIONS = 100  # RRTConnect iterations for the pusher's way in or out (~5 ms each;
                          # a way is found in a few, or the pusher drives straight)
 Job = tuple[str, str, Point | None, bool]
@@ -175,11 +176,18 @@ class Pusher:
                 return False
             return all(_box_gap(x, y, sim.extent[w]) > RADIUS for w in sim.walls)
 
-        plan = motion.plan_se2((*start, 0.0), (*goal, 0.0), valid, wide, PUSHER_ITERATIONS)
+        # A push ends beside the robot, within the disc kept around it: leave that start
+        # first (motion.escape), or OMPL finds no way out and the pusher drives out in a
+        # straight line, shoving any cube on it out of the scene.
+        here = (*start, 0.0) if valid(*start) else motion.escape((*start, 0.0), valid, ESCAPE)
+        if here is None:
+            return [goal]
+        plan = motion.plan_se2(here, (*goal, 0.0), valid, wide, PUSHER_ITERATIONS)
         if plan is None:
             return [goal]
         self.plan_seconds += plan.seconds
-        return [(q[0], q[1]) for q in plan.path[1:]]
+        lead = [] if here[:2] == start else [(here[0], here[1])]
+        return lead + [(q[0], q[1]) for q in plan.path[1:]]
 
     # --- control, before every physics step ----------------------------------------------
 

@@ -24,6 +24,8 @@ PLAN_ITERATIONS = 3000    # RRTConnect iterations for a path that avoids walls o
 DETOUR_ITERATIONS = 1000  # for a path that also avoids the movable cubes
 JOIN = CHECK_FROM    # metres a stale path may be joined over, from the robot or to the goal
 JOIN_BACK = 2 * round(JOIN / STEP)  # waypoints back from the end where the goal join may start
+ESCAPE = 0.15        # metres the robot may move off a start where its disc touches a wall or
+                     # a cube, to the nearest pose where it does not (motion.escape)
 
 
 class Routes:
@@ -37,6 +39,7 @@ class Routes:
         self._no_path: set[tuple[object, ...]] = set()
         self.refreshed = 0  # poses sampled again because they went stale
         self.joined = 0  # stale paths kept, joined to the robot and to the goal instead
+        self.escaped = 0  # paths planned from a start the disc grazed, led out of it first
         self.last_blockers: dict[str, frozenset[str]] = {}
         """The cubes last measured on each path: the facts report them for a path not
         measured now (planned from elsewhere), so that they do not flicker as the robot moves."""
@@ -193,10 +196,17 @@ class Routes:
     def _solve(self, start: Pose2, goal: Pose2, cubes: list[str], iterations: int
                ) -> tuple[Pose2, ...] | None:
         valid = self.state.sim.base_checker(cubes)
-        if not (valid(start[0], start[1]) and valid(goal[0], goal[1])):
-            return None  # OMPL would spend its whole budget before saying so
         began = time.perf_counter()
-        result = motion.plan_se2(start, goal, valid, self.state.scene.bounds, iterations,
+        free = start if valid(start[0], start[1]) else motion.escape(start, valid, ESCAPE)
+        if free is None or not valid(goal[0], goal[1]):
+            return None  # OMPL would spend its whole budget before saying so
+        result = motion.plan_se2(free, goal, valid, self.state.scene.bounds, iterations,
                                   STEP)
         self.plan_seconds.append(time.perf_counter() - began)  # failed solves count too
-        return None if result is None else result.path
+        if result is None:
+            return None
+        if free is not start:  # leave the grazing start first (motion.escape)
+            self.escaped += 1
+            head = motion.densify([start[:2], free[:2]], start, free, STEP)[:-1]
+            return head + result.path
+        return result.path

@@ -50,6 +50,8 @@ class SkillWorld(Generic[StateT, ConditionsT]):
         self.started: list[GroundAction] = []
         self.halted: list[GroundAction] = []
         self.failed: list[GroundAction] = []
+        self.reasons: list[tuple[GroundAction, str]] = []
+        """Each failed action with the reason its skill gave for it ('' for none)."""
         self.on_frame: Callable[[StateT, str], None] | None = None
         self.save_recording: Callable[[], None] | None = None
         self.action_ticks = 0
@@ -88,6 +90,7 @@ class SkillWorld(Generic[StateT, ConditionsT]):
         skill = self._skill(key)
         if skill is None:
             self.failed.append(action)
+            self.reasons.append((action, "it cannot start here"))
             return FAILURE
         self.running[key] = skill
         return self.step(key)
@@ -101,7 +104,10 @@ class SkillWorld(Generic[StateT, ConditionsT]):
         self.current = f"{key[0]}({', '.join(key[1])})"
         if status is not RUNNING:
             del self.running[key]
-            (self.failed if status is FAILURE else self.executed).append(self.ground(key))
+            action = self.ground(key)
+            (self.failed if status is FAILURE else self.executed).append(action)
+            if status is FAILURE:
+                self.reasons.append((action, skill.reason))
         if self.on_frame is not None:
             self.on_frame(self.state, f"t={self.sim_seconds:5.1f}s  {self.current}")
         return status

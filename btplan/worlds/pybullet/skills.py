@@ -15,8 +15,9 @@ from collections.abc import Generator
 from typing import Protocol
 
 from btplan.bt.status import FAILURE, RUNNING, SUCCESS, Status
-from btplan.worlds.pybullet import arm
+from btplan.worlds.pybullet import arm, samplers
 from btplan.worlds.pybullet.arm import Timings
+from btplan.worlds.pybullet.geometry import distance
 from btplan.worlds.pybullet.paths import DRIVE_FROM
 from btplan.worlds.pybullet.robot import SHUT
 from btplan.worlds.pybullet.routes import Routes
@@ -31,6 +32,9 @@ SAFE_SECONDS = 3.0    # the longest a halted skill may take to fold the arm
 
 
 class Skill(Protocol):
+    reason: str
+    """Why the skill failed, when it knows ('' otherwise): read once it returned FAILURE."""
+
     def step(self) -> Status: ...
 
     def halt(self) -> None: ...
@@ -44,6 +48,7 @@ class Scripted:
         self.substeps = max(1, round(state.scene.tick_seconds * HZ))
         self.done: Status | None = None
         self.started = False
+        self.reason = ""
 
     def step(self) -> Status:
         if self.done is not None:
@@ -61,6 +66,9 @@ class Scripted:
                 next(self.script)
         except StopIteration as finished:
             self.done = finished.value
+            if self.done is FAILURE:
+                self.reason = self.state.failure
+            self.state.failure = ""
             return finished.value  # type: ignore[no-any-return]
         return RUNNING
 
@@ -69,6 +77,12 @@ class Scripted:
         self.script.close()
         if self.done is None:
             settle(self.state, self.timings)
+
+
+def refuse(state: SceneState, reason: str) -> Status:
+    """FAILURE, with the reason the skill gives for it (Scripted.reason)."""
+    state.failure = reason
+    return FAILURE
 
 
 def settle(state: SceneState, timings: Timings) -> None:
@@ -197,21 +211,33 @@ def put_down(state: SceneState, timings: Timings, cube: str, spot: Point | None,
 
 
 def move_to(routes: Routes, timings: Timings, target: str, trajectory: str) -> Script:
-    """Fold the arm, then follow the trajectory; FAILURE when the way ahead gets blocked."""
+    """Fold the arm, then follow the trajectory; FAILURE when the way ahead gets blocked.
+
+    The path is driven only from where it starts, the robot's pose: a path that could not
+    be planned again from here (no pose next to the target is free, or no way leads
+    there) fails the move at once, with the reason, instead of driving the old path from
+    wherever it began. Each of the few re-plans after a target that moved starts from
+    the robot too, so a move that makes no progress ends within a bounded time.
+    """
     state = routes.state
     yield from arm.to_carry(state, timings, state.held)
-    routes.prepare(trajectory, DRIVE_FROM)
     traj = state.trajectories[trajectory]
-    traj.executing = True
     speed = state.scene.speed
     substeps = max(1, round(state.scene.tick_seconds * HZ))
     retargets = 0
     try:
+        why = drive_from_here(routes, trajectory)
+        if why:
+            return refuse(state, why)
         index = 0
         while True:
             path = traj.path
-            if not path or state.path_blockers(traj, index):
-                return FAILURE
+            if not path:
+                return refuse(state, f"no path from here to {target}")
+            blockers = state.path_blockers(traj, index)
+            if blockers:
+                return refuse(state, f"the way to {target} is blocked by "
+                                     f"{', '.join(sorted(blockers))}")
             # One tick's worth of path, checked at the start of the tick as before.
             budget = substeps
             while budget > 0 and index < len(path) - 1:
@@ -228,13 +254,35 @@ def move_to(routes: Routes, timings: Timings, target: str, trajectory: str) -> S
             if index >= len(path) - 1:
                 retargets += 1  # the target moved while we drove: plan again from here
                 if retargets > MAX_RETARGETS:
-                    return FAILURE
-                traj.executing = False
-                routes.prepare(trajectory, DRIVE_FROM)
-                traj.executing = True
+                    return refuse(state, f"{target} moved away each of the {MAX_RETARGETS} "
+                                         "times the robot got to it")
+                why = drive_from_here(routes, trajectory)
+                if why:
+                    return refuse(state, why)
                 index = 0
             if budget > 0:
                 for _ in range(budget):
                     yield
     finally:
         traj.executing = False
+
+
+def drive_from_here(routes: Routes, trajectory: str) -> str:
+    """Plan the trajectory again from the robot if needed, and mark it driven; why it
+    cannot be driven from here ('' when it can)."""
+    state = routes.state
+    traj = state.trajectories[trajectory]
+    traj.executing = False
+    routes.prepare(trajectory, DRIVE_FROM)
+    traj.executing = True
+    target = traj.target
+    if target in state.sim.cubes and not state.present(target):
+        return f"{target} is not in the scene"
+    if samplers.approach_pose(state, target, avoid_cubes=False) is None:
+        # The path kept leads to where the target was: driving it would be no progress.
+        if state.missed_poses(target):
+            return f"every free pose next to {target} was tried"
+        return f"no free pose next to {target} to drive to"
+    if traj.path and distance(traj.path[0], state.base) <= DRIVE_FROM:
+        return ""
+    return f"no path from here to {target}"

@@ -41,6 +41,7 @@ class SceneState:
         self.handled = 0  # cubes the robot grasped or put down so far
         self.carried: set[str] = set()  # cubes in an external agent's hand, out of reach
         self.releasing: str | None = None  # the cube a running put-down is letting go of
+        self.failure = ""  # why the running skill is failing, as it says (skills.refuse)
         self.out_of_reach: dict[str, Point] = {}
         """Cubes the arm failed to reach from where the base stands, and where they were:
         not `near` until the robot drives up to them again (or they move)."""

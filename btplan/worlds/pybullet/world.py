@@ -95,6 +95,7 @@ class PyBulletWorld(SkillWorld[SceneState, Conditions]):
             "moves_started": moves,
             "poses_refined_again": self.routes.refreshed,
             "paths_joined": self.routes.joined,
+            "paths_escaped": self.routes.escaped,
             "ompl_ms_per_move": round(1000 * total / max(1, moves), 2),
             "physics_steps": self.state.sim.steps,
             "physics_seconds": round(self.state.sim.physics_seconds, 3),

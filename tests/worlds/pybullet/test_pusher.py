@@ -142,3 +142,30 @@ def test_a_shove_targets_only_spots_a_straight_push_reaches() -> None:
         assert any(x > 4.1 for x, _ in spots)  # the far room is still a target
     finally:
         world.close()
+
+
+def test_a_pusher_that_ends_beside_the_robot_drives_out_round_the_cubes() -> None:
+    """A shove run (repair, seed 8): the push ended 0.53 m from the robot, inside the
+    0.62 m kept round it, so the way out had no valid start, and the pusher drove out in
+    a straight line that shoved green, lying on it, out of the scene."""
+    from sim_scenes import YOUBOT_SCENE
+
+    from btplan.worlds.pybullet.pusher import RADIUS, Pusher
+
+    world = open_world(TASK, str(YOUBOT_SCENE), seed=8)
+    try:
+        state = world.state
+        state.put("blue", None)
+        state.put("green", (4.54, -0.55))
+        state.move_base((4.54, -0.02, -1.31))
+        start, home = (4.53, 0.51), (4.51, -3.6)
+        route = Pusher(state)._route(start, home)
+        assert route != [home] and route[-1] == home
+        assert math.dist(route[0], start) <= 0.3
+        line = [start, *route]
+        for a, b in zip(line, line[1:]):  # every leg keeps off green
+            n = max(1, math.ceil(math.dist(a, b) / 0.02))
+            assert all(math.dist((a[0] + (b[0] - a[0]) * k / n, a[1] + (b[1] - a[1]) * k / n),
+                                 (4.54, -0.55)) > RADIUS for k in range(n + 1))
+    finally:
+        world.close()

@@ -47,6 +47,7 @@ class Scripted:
         self.substeps = max(1, round(state.scene.tick_seconds * HZ))
         self.status: Status | None = None
         self.started = False
+        self.reason = ""  # these skills give no reason for a failure
 
     def step(self) -> Status:
         if self.status is not None:
