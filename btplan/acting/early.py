@@ -1,9 +1,10 @@
 """Expansions made before a tick reaches the condition, in the tick the loop is in.
 
 Two kinds, both off in the published algorithm (`look_ahead`): the later false
-preconditions of an action whose first false one was just expanded
-(btplan.acting.ahead), and the conditions ahead of the running actions that an outside
-change broke (btplan.acting.watch). Each is expanded as the tick that reached it would
+preconditions of an action whose first false one was just expanded, and of their
+achievers those that would make the robot give up what it holds (btplan.acting.ahead);
+and the conditions ahead of the running actions that an outside change broke
+(btplan.acting.watch). Each is expanded as the tick that reached it would
 expand it, conflict resolution included; one without achievers or without a
 conflict-free place now is left for that tick to find.
 """
@@ -12,20 +13,21 @@ from __future__ import annotations
 
 import time
 
-from btplan.acting.ahead import attached, later_false
+from btplan.acting.ahead import attached, deeper_false, forced_out, later_false
 from btplan.acting.choice import achievers_for
 from btplan.acting.state import LoopState, TickReport
 from btplan.acting.watch import broken_ahead
 from btplan.bt import Node
 from btplan.errors import UnresolvableConflictError
-from btplan.model import Atom
+from btplan.model import Atom, GroundAction
 from btplan.planner import literal_of
 
 
 def expand_ahead(loop: LoopState, report: TickReport) -> None:
     """Expand the false preconditions after the one just expanded (`loop.ahead`), as the
     tick would once the robot had achieved that one; and those an expansion here adds
-    (a credited achiever's, btplan.acting.credit)."""
+    (a credited achiever's, btplan.acting.credit). After each, the false preconditions
+    of the achiever it got that conflict where they stand (`expand_forced`)."""
     state = loop.world.facts()
     while loop.ahead:
         node = loop.ahead.pop(0)
@@ -35,7 +37,27 @@ def expand_ahead(loop: LoopState, report: TickReport) -> None:
         literal = literal_of(node)
         if literal is None or literal.holds(state):
             continue
-        _expand_early(loop, report, node, state)
+        if _expand_early(loop, report, node, state):
+            expand_forced(loop, report, node)
+
+
+def expand_forced(loop: LoopState, report: TickReport, node: Node) -> None:
+    """Expand the false preconditions of `node`'s new achiever that every achiever of
+    theirs would make the robot give up what an earlier condition holds
+    (btplan.acting.ahead): conflict resolution puts them in front now, rather than the
+    tick finding them only with the cube in hand. The others wait for the tick.
+
+    The facts are read again: the expansion may have refined a value (a trajectory)
+    that the world measures only from now on."""
+    state = loop.world.facts()
+    for deeper in deeper_false(node, state, loop.expanded):
+        if not _room(loop, report):
+            return
+        literal = literal_of(deeper)
+        assert literal is not None
+        achievers, spare = achievers_for(loop, deeper, literal, state)
+        if forced_out(deeper, achievers, loop.judge()):
+            _expand_early(loop, report, deeper, state, (achievers, spare))
 
 
 def expand_broken(loop: LoopState, report: TickReport, last: frozenset[Atom]) -> None:
@@ -66,13 +88,15 @@ def _room(loop: LoopState, report: TickReport) -> bool:
             and len(loop.expansions) < loop.options.max_expansions)
 
 
-def _expand_early(loop: LoopState, report: TickReport, node: Node,
-                  state: frozenset[Atom]) -> bool:
-    """ExpandTree and conflict resolution on `node`; False when it is left for later."""
+def _expand_early(loop: LoopState, report: TickReport, node: Node, state: frozenset[Atom],
+                  found: tuple[list[GroundAction], list[GroundAction]] | None = None) -> bool:
+    """ExpandTree and conflict resolution on `node` (`found`: its achievers and spare
+    ones, when looked up already); False when it is left for later."""
     literal = literal_of(node)
     if literal is None or node in loop.expanded or not attached(node, loop.tree.root):
         return False
-    achievers, spare = achievers_for(loop, node, literal, state)
+    achievers, spare = found if found is not None else achievers_for(loop, node, literal,
+                                                                     state)
     if not achievers:
         return False
     try:
