@@ -13,18 +13,19 @@ the cube to the goal needs `near(goal)`, whose MoveTo needs the path free, and f
 it needs the hand the cube is about to fill. The tick meets that only with the cube in
 hand, and sets it down again. So the false preconditions of that achiever are looked
 at too (`deeper_false`), and expanded at once when every achiever they would get
-conflicts with what is held before them (`forced_out`): conflict resolution then puts
+conflicts with what is held before the action they are for (`forced_out`), unless
+the relaxed plan for what is held passes through them: conflict resolution then puts
 them in front, as it does for the later conditions themselves. Those that fit where
 they stand are left for the tick to reach, as before.
 """
 
 from __future__ import annotations
 
-from collections.abc import Collection, Sequence
+from collections.abc import Callable, Collection, Sequence
 
 from btplan.bt import Fallback, Node
 from btplan.bt import Sequence as SequenceNode
-from btplan.model import Atom, GroundAction
+from btplan.model import Atom, GroundAction, GroundLiteral
 from btplan.planner import Judge, literal_of
 from btplan.planner.conflicts import falsifies, guarantees, sequence_slots
 
@@ -68,17 +69,37 @@ def _false(nodes: Sequence[Node], state: frozenset[Atom], expanded: Collection[N
     return out
 
 
-def forced_out(node: Node, achievers: Sequence[GroundAction], judge: Judge) -> bool:
+def forced_out(node: Node, achievers: Sequence[GroundAction], judge: Judge,
+               reached_first: Callable[[list[GroundLiteral]], bool] | None = None) -> bool:
     """Whether every one of `achievers`, run where `node` stands, needs a condition that
-    an earlier sibling along `node`'s Sequences excludes, or makes one false: conflict
-    resolution's rules (a) and (b), asked before the atomic BT is built. Then what that
-    sibling holds (the cube in hand) would have to be given up to achieve `node`."""
+    an earlier sibling along the Sequences enclosing `node`'s own excludes, or makes one
+    false: conflict resolution's rules (a) and (b), asked before the atomic BT is built.
+    Then what that sibling holds (the cube in hand) would have to be given up to achieve
+    `node`.
+
+    Not counted: the earlier siblings in `node`'s own Sequence, preconditions of the same
+    action, which the look-ahead orders when the first of them is expanded
+    (`later_false`); and a sibling whose conditions `reached_first` says are reached
+    only through `node`'s (clearing b4 is on the way to stacking b3 onto b6 when b3 lies
+    under b4): achieving that sibling achieves `node` first."""
     if not achievers:
         return False
-    earlier = [(guarantees(e), e) for sequence, index in sequence_slots(node)
+    earlier = [(guarantees(e), e) for sequence, index in sequence_slots(node)[1:]
                for e in sequence.children[:index] if e not in judge.guards]
-    if not earlier:
+    first: dict[int, bool] = {}
+
+    def gives_up(action: GroundAction) -> bool:
+        needs = [list(action.preconditions)]
+        for number, (held, sibling) in enumerate(earlier):
+            if not (judge.blocked(held, needs, sibling)
+                    or any(falsifies(action, h) for h in held)):
+                continue
+            if reached_first is not None:
+                if number not in first:
+                    first[number] = reached_first(held)
+                if first[number]:
+                    continue
+            return True
         return False
-    return all(any(judge.blocked(held, [list(a.preconditions)], e)
-                   or any(falsifies(a, h) for h in held) for held, e in earlier)
-               for a in achievers)
+
+    return bool(earlier) and all(gives_up(a) for a in achievers)

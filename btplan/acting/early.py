@@ -15,11 +15,12 @@ import time
 
 from btplan.acting.ahead import attached, deeper_false, forced_out, later_false
 from btplan.acting.choice import achievers_for
+from btplan.acting.prepare import on_the_way, relaxed_plans
 from btplan.acting.state import LoopState, TickReport
 from btplan.acting.watch import broken_ahead
 from btplan.bt import Node
 from btplan.errors import UnresolvableConflictError
-from btplan.model import Atom, GroundAction
+from btplan.model import Atom, GroundAction, GroundLiteral
 from btplan.planner import literal_of
 
 
@@ -55,8 +56,14 @@ def expand_forced(loop: LoopState, report: TickReport, node: Node) -> None:
             return
         literal = literal_of(deeper)
         assert literal is not None
+
+        def reached_first(held: list[GroundLiteral], atom: Atom = literal.atom) -> bool:
+            goals = [h.atom for h in held if h.positive]
+            return on_the_way(relaxed_plans(loop), state, goals, atom)
+
         achievers, spare = achievers_for(loop, deeper, literal, state)
-        if forced_out(deeper, achievers, loop.judge()):
+        if forced_out(deeper, achievers, loop.judge(),
+                      reached_first if literal.positive else None):
             _expand_early(loop, report, deeper, state, (achievers, spare))
 
 

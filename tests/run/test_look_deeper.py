@@ -15,7 +15,8 @@ from btplan.model import Atom, GroundLiteral, Task
 from btplan.planner import AchieverIndex, Judge
 from btplan.planner.expand import condition_node
 
-DOMAINS = Path(__file__).resolve().parents[2] / "domains"
+ROOT = Path(__file__).resolve().parents[2]
+DOMAINS = ROOT / "domains"
 OPTIONS = replace(ACTING_OPTIONS, expansions_per_tick=64)
 
 DOOR = """
@@ -143,3 +144,14 @@ def test_forced_out_asks_every_achiever(tmp_path: Path) -> None:
     assert not forced_out(is_open, [open_door, kick], judge)  # a kick does not
     assert not forced_out(holding, [open_door], judge)  # nothing is held before it
     assert not forced_out(is_open, [], judge)
+
+
+def test_a_condition_on_the_way_to_what_is_held_is_left_to_the_tick() -> None:
+    """b3 lies under b4 under b6: clearing b4 (for on(b1, b4)) conflicts with on(b3, b6),
+    but stacking b3 clears b4 on its way, so it is not expanded a second time ahead."""
+    task = load(str(ROOT / "bench" / "problems" / "blocksworld_6.bt"))
+    outcome = run(task, look_ahead=True, scope_moves=True, goal_credit=True, options=OPTIONS,
+                  max_ticks=100)
+    assert outcome.reached
+    conditions = [e.condition for r in outcome.records for e in r.expansions]
+    assert conditions.count("clear(b4)") == 1
