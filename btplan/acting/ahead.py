@@ -71,20 +71,20 @@ def _false(nodes: Sequence[Node], state: frozenset[Atom], expanded: Collection[N
 
 def forced_out(node: Node, achievers: Sequence[GroundAction], judge: Judge,
                reached_first: Callable[[list[GroundLiteral]], bool] | None = None) -> bool:
-    """Whether every one of `achievers`, run where `node` stands, needs a condition that
-    an earlier sibling along the Sequences enclosing `node`'s own excludes, or makes one
-    false: conflict resolution's rules (a) and (b), asked before the atomic BT is built.
-    Then what that sibling holds (the cube in hand) would have to be given up to achieve
-    `node`.
+    """Whether every one of `achievers`, run for a precondition of `node`'s achiever,
+    needs a condition that an earlier sibling along `node`'s Sequences excludes, or
+    makes one false: conflict resolution's rules (a) and (b), asked before the atomic
+    BT is built. Then what that sibling holds (the cube in hand) would have to be given
+    up to achieve the precondition.
 
-    Not counted: the earlier siblings in `node`'s own Sequence, preconditions of the same
-    action, which the look-ahead orders when the first of them is expanded
-    (`later_false`); and a sibling whose conditions `reached_first` says are reached
-    only through `node`'s (clearing b4 is on the way to stacking b3 onto b6 when b3 lies
-    under b4): achieving that sibling achieves `node` first."""
+    The achiever's own other preconditions are not counted: the look-ahead orders
+    them when the first of them is expanded (`later_false`); nor a sibling whose
+    conditions `reached_first` says are reached only through the precondition's
+    (clearing b4 is on the way to stacking b3 onto b6 when b3 lies under b4):
+    achieving that sibling achieves the precondition first."""
     if not achievers:
         return False
-    earlier = [(guarantees(e), e) for sequence, index in sequence_slots(node)[1:]
+    earlier = [(guarantees(e), e) for sequence, index in sequence_slots(node)
                for e in sequence.children[:index] if e not in judge.guards]
     first: dict[int, bool] = {}
 

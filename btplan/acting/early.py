@@ -62,9 +62,49 @@ def expand_forced(loop: LoopState, report: TickReport, node: Node) -> None:
             return on_the_way(relaxed_plans(loop), state, goals, atom)
 
         achievers, spare = achievers_for(loop, deeper, literal, state)
-        if forced_out(deeper, achievers, loop.judge(),
+        if forced_out(node, achievers, loop.judge(),
                       reached_first if literal.positive else None):
             _expand_early(loop, report, deeper, state, (achievers, spare))
+
+
+def expand_if_forced(loop: LoopState, report: TickReport) -> None:
+    """Of the later false preconditions in `loop.forcing`, expand those whose first
+    achiever has a false precondition that every achiever of it would make the robot
+    give up what is held before them (`look_deeper` without `look_ahead`): only then
+    is the later condition's subtree needed before the tick reaches it. Each is looked
+    at as the deeper look of `expand_forced` would, its precondition's achievers ranked
+    where the later condition stands."""
+    while loop.forcing:
+        node = loop.forcing.pop(0)
+        if not _room(loop, report):
+            loop.forcing = []
+            return
+        literal = literal_of(node)
+        state = loop.world.facts()
+        if literal is None or literal.holds(state) or node in loop.expanded:
+            continue
+        found = achievers_for(loop, node, literal, state)
+        if not found[0]:
+            continue
+        refined = loop.world.facts()  # the achiever may have refined a trajectory
+        needs = [p for p in found[0][0].preconditions if not p.holds(refined)]
+        if any(_forces(loop, node, need, refined) for need in needs):
+            if _expand_early(loop, report, node, state, found):
+                expand_forced(loop, report, node)
+
+
+def _forces(loop: LoopState, node: Node, need: GroundLiteral,
+            state: frozenset[Atom]) -> bool:
+    """Whether every achiever of `need`, a precondition of `node`'s achiever, would
+    make the robot give up what is held before `node` (`forced_out`)."""
+
+    def reached_first(held: list[GroundLiteral]) -> bool:
+        goals = [h.atom for h in held if h.positive]
+        return on_the_way(relaxed_plans(loop), state, goals, need.atom)
+
+    achievers, _ = achievers_for(loop, node, need, state)
+    return forced_out(node, achievers, loop.judge(),
+                      reached_first if need.positive else None)
 
 
 def expand_broken(loop: LoopState, report: TickReport, last: frozenset[Atom]) -> None:

@@ -6,6 +6,8 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
+import pytest
+
 from btplan import run
 from btplan.acting import ACTING_OPTIONS, RunOutcome
 from btplan.acting.ahead import forced_out
@@ -132,18 +134,33 @@ def test_the_path_is_cleared_before_the_cube_is_taken(tmp_path: Path) -> None:
 
 def test_forced_out_asks_every_achiever(tmp_path: Path) -> None:
     task = door(tmp_path, KICK)
-    holding, is_open, at_goal = (
-        condition_node(GroundLiteral(Atom(name, args), True), task)
-        for name, args in (("holding", ("box",)), ("open", ()), ("at", ("goal",))))
-    Sequence([holding, Sequence([is_open]), at_goal])  # open() runs with the box in hand
+    holding, at_goal = (condition_node(GroundLiteral(Atom(name, args), True), task)
+                        for name, args in (("holding", ("box",)), ("at", ("goal",))))
+    Sequence([holding, at_goal])  # Go(goal), for at(goal), runs with the box in hand
     index = AchieverIndex(task, OPTIONS)
     domain = task.domain.action_map
     open_door, kick = (index.ground(domain[name], ()) for name in ("Open", "Kick"))
     judge = Judge({}, index.mutexes)
-    assert forced_out(is_open, [open_door], judge)  # it needs the hand the box fills
-    assert not forced_out(is_open, [open_door, kick], judge)  # a kick does not
+    assert forced_out(at_goal, [open_door], judge)  # it needs the hand the box fills
+    assert not forced_out(at_goal, [open_door, kick], judge)  # a kick does not
     assert not forced_out(holding, [open_door], judge)  # nothing is held before it
-    assert not forced_out(is_open, [], judge)
+    assert not forced_out(at_goal, [], judge)
+    assert not forced_out(at_goal, [open_door], judge, lambda held: True)  # on the way
+
+
+@pytest.mark.parametrize("other_way", ["", KICK])
+def test_without_the_look_ahead_only_a_forcing_condition_is_expanded_early(
+        tmp_path: Path, other_way: str) -> None:
+    outcome = run(door(tmp_path, other_way), look_deeper=True, scope_moves=True,
+                  options=OPTIONS, max_ticks=100)
+    assert outcome.reached
+    steps = [str(a) for a in outcome.executed]
+    if other_way:  # Go(goal) fits with the box in hand: at(goal) waits for the tick
+        assert "at(goal)" not in first_tick(outcome)
+        assert steps == ["Pick(box, home)", "Kick()", "Go(goal)", "Put(box, goal)"]
+    else:
+        assert first_tick(outcome)["open()"] > 0
+        assert steps == ["Open()", "Pick(box, home)", "Go(goal)", "Put(box, goal)"]
 
 
 def test_a_condition_on_the_way_to_what_is_held_is_left_to_the_tick() -> None:
