@@ -16,7 +16,7 @@ from collections.abc import Callable
 from btplan.acting.ahead import later_false
 from btplan.acting.choice import achievers_for
 from btplan.acting.diagnosis import failing_actions, loop_reason, most_expanded, no_achiever_reason
-from btplan.acting.early import expand_ahead, expand_broken
+from btplan.acting.early import expand_ahead, expand_broken, expand_if_forced
 from btplan.acting.finish import FinishFirst
 from btplan.acting.prepare import give_up, prepare_before
 from btplan.acting.progress import Circles
@@ -110,6 +110,7 @@ class BlendedLoop:
         scope_moves: bool = False,
         goal_credit: bool = False,
         finish_first: bool = False,
+        look_deeper: bool = False,
     ) -> None:
         """`like`: an index of the same task to share models with; `look_ahead`: also
         expand, in the same tick, the later preconditions that are false (btplan.acting.ahead),
@@ -120,7 +121,10 @@ class BlendedLoop:
         (btplan.acting.scope); `goal_credit`: rank first achievers that make other goals
         true (btplan.acting.credit), and set up the step of another goal an achiever
         enables (btplan.acting.prepare); `finish_first`: finish a halted action that does
-        not interfere with the one started instead (btplan.acting.finish)."""
+        not interfere with the one started instead (btplan.acting.finish);
+        `look_deeper`: without `look_ahead`, expand a later false precondition early
+        only when a precondition of its achiever would make the robot give up what is
+        held before it (btplan.acting.ahead; `look_ahead` includes this)."""
         self.banned = banned
         self.culprits: list[Choice] = []
         """When planning stopped: the achiever choices to give up first (backjump.py)."""
@@ -133,6 +137,9 @@ class BlendedLoop:
         self.relaxed_plans: object | None = None
         """The relaxed plans of the index's relaxed model, kept once prepare.py asked."""
         self.ahead: list[Node] = []
+        self.look_deeper = look_deeper
+        self.forcing: list[Node] = []
+        """Later false preconditions expanded now only if their achiever forces (ahead.py)."""
         self.world = world
         self.options = options or PlannerOptions()
         self.index = AchieverIndex(task, self.options, like)
@@ -200,6 +207,7 @@ class BlendedLoop:
                 if expansion is not None:
                     report.expansions.append(expansion)
                     expand_ahead(self, report)
+                    expand_if_forced(self, report)
             finally:
                 report.planning_seconds += time.process_time() - started
             if expansion is not None:
@@ -256,6 +264,8 @@ class BlendedLoop:
                 continue
             if self.look_ahead:  # before ExpandTree moves the node under a Fallback
                 self.ahead = later_false(node, state, self.expanded)
+            elif self.look_deeper:
+                self.forcing = later_false(node, state, self.expanded)
             try:
                 return self.apply(node, literal, achievers, spare)
             except UnresolvableConflictError:

@@ -181,6 +181,7 @@ def run_task(
     scope_moves: bool = False,
     goal_credit: bool = False,
     finish_first: bool = False,
+    look_deeper: bool = False,
 ) -> RunOutcome:
     """Plan and act at once (Algorithm 1) in `world`, with `agents` acting before each tick.
 
@@ -193,7 +194,8 @@ def run_task(
         world = SymbolicWorld(task, seed=seed, failure_probability=failure_probability)
     loop = BlendedLoop(task, world, options or ACTING_OPTIONS, like=models,
                        look_ahead=look_ahead, scope_moves=scope_moves,
-                       goal_credit=goal_credit, finish_first=finish_first)
+                       goal_credit=goal_credit, finish_first=finish_first,
+                       look_deeper=look_deeper)
     observer = _Observer(world, agents, loop.tree, view, rate, stop)
     interrupted = False
     halted_on_stop: tuple[str, ...] = ()
@@ -237,6 +239,7 @@ def run(
     scope_moves: bool = False,
     goal_credit: bool = False,
     finish_first: bool = False,
+    look_deeper: bool = False,
 ) -> RunOutcome:
     """Run `task` in a world with disturbances: the library form of `btplan run`.
 
@@ -254,7 +257,10 @@ def run(
     (btplan.acting.scope); `goal_credit` ranks first the achievers that make other
     goals true and sets up the step of another goal an achiever enables
     (btplan.acting.credit, btplan.acting.prepare); `finish_first` finishes a halted
-    action that does not interfere with the one started instead (btplan.acting.finish); `models`
+    action that does not interfere with the one started instead (btplan.acting.finish);
+    `look_deeper`, without `look_ahead`, expands a later false precondition early only
+    when its achiever needs something that would make the robot give up what it is
+    about to hold (btplan.acting.ahead); `models`
     are the task's models built beforehand (`task_models`), so that their cost can
     be told apart from the expansions'.
     """
@@ -267,4 +273,4 @@ def run(
                     view=view, rate=rate, failure_probability=failure_probability,
                     options=options, stop=stop, look_ahead=look_ahead, models=models,
                     scope_moves=scope_moves, goal_credit=goal_credit,
-                    finish_first=finish_first)
+                    finish_first=finish_first, look_deeper=look_deeper)

@@ -100,13 +100,7 @@ def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
     prepares the truck's return)."""
     if _within(subtree, loop.optional):
         return []
-    plans = loop.relaxed_plans
-    if not isinstance(plans, RelaxedPlans):  # the loop keeps what its model's loops share
-        relaxed = loop.index.relaxed
-        plans = _PLANS.get(relaxed)
-        if plans is None:
-            plans = _PLANS[relaxed] = RelaxedPlans(relaxed)
-        loop.relaxed_plans = plans
+    plans = relaxed_plans(loop)
     found = prepared(action, condition, loop.task.goal_literals, plans, loop.index.mutexes,
                      state)
     if not found:
@@ -117,6 +111,29 @@ def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
     loop.never_expand(skips)
     loop.optional.update(wanted)
     return wanted
+
+
+def relaxed_plans(loop: LoopState) -> RelaxedPlans:
+    """The relaxed plans of the loop's relaxed model, shared by the loops of that model."""
+    plans = loop.relaxed_plans
+    if not isinstance(plans, RelaxedPlans):  # the loop keeps what its model's loops share
+        relaxed = loop.index.relaxed
+        plans = _PLANS.get(relaxed)
+        if plans is None:
+            plans = _PLANS[relaxed] = RelaxedPlans(relaxed)
+        loop.relaxed_plans = plans
+    return plans
+
+
+def on_the_way(plans: RelaxedPlans, state: frozenset[Atom], goals: Sequence[Atom],
+               atom: Atom) -> bool:
+    """Whether the relaxed plan for `goals` from `state` makes `atom` true on its way:
+    a step needs it and it is false (the plan is not kept: `needing` keeps the open
+    goals' plan for `prepared`)."""
+    if atom in state:
+        return False
+    steps = _plan(plans.relaxed.costs(state), state, goals, plans.producers)
+    return any(atom in needs for _, needs in steps)
 
 
 def _within(start: Node, optional: set[Node]) -> bool:

@@ -77,6 +77,9 @@ class LoopState(Protocol):
     banned: frozenset[Choice]
     ahead: list[Node]
     """Later false preconditions waiting to be expanded in this tick (btplan.acting.ahead)."""
+    forcing: list[Node]
+    """Later false preconditions to expand in this tick only if their achiever would make
+    the robot give up what is held before them (`look_deeper`, btplan.acting.ahead)."""
     goal_credit: bool
     optional: set[Node]
     """Conditions added before an achiever for another goal's step (btplan.acting.prepare)."""
