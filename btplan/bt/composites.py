@@ -33,7 +33,7 @@ class _Control(Composite):
     stop_on: Status = FAILURE
 
     def __init__(self, children: list[Node] | None = None, name: str = "", memory: bool = False):
-        super().__init__(children, name)
+        Composite.__init__(self, children, name)  # no super(): one object fewer per node
         self.memory = memory
         self._current = 0
 

@@ -77,7 +77,13 @@ class Composite(Node):
     kind: ClassVar[str] = "Composite"
 
     def __init__(self, children: list[Node] | None = None, name: str = "") -> None:
-        super().__init__(name)
+        # Node.__init__ written out (tests/bt/test_nodes.py checks every field is set):
+        # planning builds composites by the dozen a run, and the call cost as much as
+        # the fields it sets
+        self.name = name
+        self.status = IDLE
+        self.parent = None
+        self.origin = None
         self.children: list[Node] = []
         if children and type(self).insert is Composite.insert:  # `append` each, inlined
             for child in children:
