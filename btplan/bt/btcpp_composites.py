@@ -97,7 +97,7 @@ class BtcppParallel(Parallel):
     __slots__ = ()
 
     def tick(self, world: World) -> Status:
-        children = self._children
+        children = self.children
         need_success = self._threshold(self.success)
         need_failure = self._threshold(self.failure)
         skipped = 0

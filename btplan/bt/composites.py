@@ -33,12 +33,12 @@ class _Control(Composite):
     stop_on: Status = FAILURE
 
     def __init__(self, children: list[Node] | None = None, name: str = "", memory: bool = False):
-        super().__init__(children, name)
+        Composite.__init__(self, children, name)  # no super(): one object fewer per node
         self.memory = memory
         self._current = 0
 
     def tick(self, world: World) -> Status:
-        children = self._children
+        children = self.children
         start = self._current if self.memory else 0
         stop_on = self.stop_on
         for i in range(start, len(children)):
@@ -55,7 +55,7 @@ class _Control(Composite):
 
     def _halt_after(self, index: int, world: World) -> None:
         """Halt the children right of the deciding one that are still active."""
-        children = self._children
+        children = self.children
         for j in range(index + 1, len(children)):
             if children[j].status is not IDLE:
                 children[j].halt(world)

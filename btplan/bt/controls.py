@@ -33,7 +33,7 @@ class SequenceWithMemory(Sequence):
         super().__init__(children, name, memory=True)
 
     def tick(self, world: World) -> Status:
-        children = self._children
+        children = self.children
         skipped = True
         while self._current < len(children):
             fresh = children[self._current].status is not RUNNING
@@ -136,7 +136,7 @@ class ParallelAll(Composite):
         self._failures = 0
 
     def tick(self, world: World) -> Status:
-        children = self._children
+        children = self.children
         threshold = self.ports.int("max_failures")
         if threshold < 0:
             threshold = max(len(children) + threshold + 1, 0)
@@ -183,7 +183,7 @@ class IfThenElse(Composite):
         self._branch = 0
 
     def tick(self, world: World) -> Status:
-        children = self._children
+        children = self.children
         if self._branch == 0:
             status = children[0].tick(world)
             if status is SKIPPED:
@@ -219,7 +219,7 @@ class WhileDoElse(Composite):
     kind = "WhileDoElse"
 
     def tick(self, world: World) -> Status:
-        children = self._children
+        children = self.children
         condition = children[0].tick(world)
         if condition is RUNNING:
             self.status = RUNNING
@@ -282,7 +282,7 @@ class Switch(Composite):
                                                                     self.ports.board.enums):
                     match = i
                     break
-        children = self._children
+        children = self.children
         if self._running not in (-1, match):
             children[self._running].halt(world)
         status = children[match].tick(world)
@@ -321,7 +321,7 @@ class TryCatch(Composite):
         self._catching = False
 
     def tick(self, world: World) -> Status:
-        children = self._children
+        children = self.children
         if not self._catching:
             while self._current < len(children) - 1:
                 status = children[self._current].tick(world)
@@ -351,7 +351,7 @@ class TryCatch(Composite):
         self._current, self._catching = 0, False
         super().halt(world)
         if in_try and self.ports.bool("catch_on_halt"):
-            catch = self._children[-1]
+            catch = self.children[-1]
             if catch.tick(world) is RUNNING:
                 catch.halt(world)
         self.status = IDLE

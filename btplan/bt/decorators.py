@@ -24,12 +24,12 @@ class Decorator(Composite):
 
     @property
     def child(self) -> Node:
-        if not self._children:
+        if not self.children:
             raise ValueError(f"decorator {self.name or type(self).__name__!r} has no child")
-        return self._children[0]
+        return self.children[0]
 
     def insert(self, index: int, child: Node) -> None:
-        if self._children:
+        if self.children:
             raise ValueError(f"decorator {self.name or type(self).__name__!r} already has a child")
         super().insert(index, child)
 
@@ -44,7 +44,7 @@ class Inverter(Decorator):
     kind = "Inverter"
 
     def tick(self, world: World) -> Status:
-        status = self._children[0].tick(world)
+        status = self.children[0].tick(world)
         if status is SUCCESS:
             status = FAILURE
         elif status is FAILURE:
@@ -60,7 +60,7 @@ class ForceSuccess(Decorator):
     kind = "ForceSuccess"
 
     def tick(self, world: World) -> Status:
-        status = self._children[0].tick(world)
+        status = self.children[0].tick(world)
         if status is SKIPPED:  # passed on, as in BT.CPP 4
             self.status = RUNNING
             return status
@@ -75,7 +75,7 @@ class ForceFailure(Decorator):
     kind = "ForceFailure"
 
     def tick(self, world: World) -> Status:
-        status = self._children[0].tick(world)
+        status = self.children[0].tick(world)
         if status is SKIPPED:
             self.status = RUNNING
             return status
@@ -106,7 +106,7 @@ class Retry(Decorator):
         self._failures = 0
 
     def tick(self, world: World) -> Status:
-        child = self._children[0]
+        child = self.children[0]
         while True:
             fresh = child.status is not RUNNING
             status = child.tick(world)
@@ -149,7 +149,7 @@ class Timeout(Decorator):
 
     def tick(self, world: World) -> Status:
         self._used += 1
-        child = self._children[0]
+        child = self.children[0]
         status = child.tick(world)
         if status is RUNNING:
             if self._used >= self.ticks:

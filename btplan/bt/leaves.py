@@ -28,13 +28,19 @@ class Leaf(Node):
         ports: tuple[str, ...] | None = None,
         name: str = "",
     ) -> None:
-        super().__init__(name or leaf_label(ident, args))
+        # Node.__init__ and leaf_label written out (tests/bt/test_nodes.py checks both):
+        # planning builds a hundred leaves a run, and the calls cost as much as the rest
+        self.name = name or (f"{ident}({', '.join(args)})" if args else ident)
+        self.status = IDLE
+        self.parent = None
+        self.origin = None
         self.ident = ident
-        self.args = tuple(args)
-        self.ports = tuple(ports) if ports is not None else tuple(f"arg{i}" for i in range(len(args)))
-        if len(self.ports) != len(self.args):
-            raise ValueError(f"{self.name}: {len(self.ports)} port names for {len(self.args)} arguments")
-        self.key: LeafKey = (ident, self.args)
+        self.args = args = tuple(args)
+        self.ports = ports = (tuple(ports) if ports is not None
+                              else tuple(f"arg{i}" for i in range(len(args))))
+        if len(ports) != len(args):
+            raise ValueError(f"{self.name}: {len(ports)} port names for {len(args)} arguments")
+        self.key: LeafKey = (ident, args)
 
 
 class Condition(Leaf):

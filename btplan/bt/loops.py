@@ -45,7 +45,7 @@ class Repeat(Decorator):
 
     def tick(self, world: World) -> Status:
         cycles = self.ports.int("num_cycles")
-        child = self._children[0]
+        child = self.children[0]
         while cycles == -1 or self._count < cycles:
             fresh = child.status is not RUNNING
             status = child.tick(world)
@@ -77,7 +77,7 @@ class KeepRunningUntilFailure(Decorator):
     kind = "KeepRunningUntilFailure"
 
     def tick(self, world: World) -> Status:
-        status = self._children[0].tick(world)
+        status = self.children[0].tick(world)
         if status is SUCCESS or status is SKIPPED:  # BT.CPP 4.8 keeps running on a skip
             status = RUNNING
         self.status = status
@@ -102,7 +102,7 @@ class RunOnce(Decorator):
                 return SKIPPED
             self.status = self._result
             return self._result
-        status = self._children[0].tick(world)
+        status = self.children[0].tick(world)
         if status is SUCCESS or status is FAILURE:
             self._result = status
         self.status = status
@@ -132,7 +132,7 @@ class Precondition(Decorator):
             self.status = RUNNING if otherwise is SKIPPED else otherwise
             return otherwise
         self._running = True
-        status = self._children[0].tick(world)
+        status = self.children[0].tick(world)
         if status is not RUNNING:
             self._running = False
         self.status = RUNNING if status is SKIPPED else status
@@ -159,7 +159,7 @@ class Delay(Decorator):
         if self._waited < self.ticks:
             self.status = RUNNING
             return RUNNING
-        status = self._children[0].tick(world)
+        status = self.children[0].tick(world)
         if status is not RUNNING:
             self._waited = -1
         self.status = RUNNING if status is SKIPPED else status
@@ -227,7 +227,7 @@ class Loop(Decorator):
                 return status
             if "value" in self.ports.values:
                 self.ports.write("value", self._convert(item))
-        status = self._children[0].tick(world)
+        status = self.children[0].tick(world)
         self._child_running = status is RUNNING
         status = FAILURE if status is FAILURE else RUNNING
         self.status = status
@@ -264,7 +264,7 @@ class WhenUpdated(Decorator):
                 return RUNNING if self.waits else SKIPPED
             self._seen = seq
             self._active = True
-        status = self._children[0].tick(world)
+        status = self.children[0].tick(world)
         if status is not RUNNING:
             self._active = False
         self.status = RUNNING if status is SKIPPED else status

@@ -67,41 +67,47 @@ class Node:
 
 
 class Composite(Node):
-    """A control node with an ordered list of children."""
+    """A control node with an ordered list of children.
 
-    __slots__ = ("_children",)
+    `children` is a plain slot here, over Node's property: the planner reads it thousands
+    of times a run, and a property costs a Python call per read. Change it through
+    `insert` and `remove`, which keep the parent links."""
+
+    __slots__ = ("children",)
     kind: ClassVar[str] = "Composite"
 
     def __init__(self, children: list[Node] | None = None, name: str = "") -> None:
-        super().__init__(name)
-        self._children: list[Node] = []
+        # Node.__init__ written out (tests/bt/test_nodes.py checks every field is set):
+        # planning builds composites by the dozen a run, and the call cost as much as
+        # the fields it sets
+        self.name = name
+        self.status = IDLE
+        self.parent = None
+        self.origin = None
+        self.children: list[Node] = []
         if children and type(self).insert is Composite.insert:  # `append` each, inlined
             for child in children:
                 if child.parent is not None:
                     raise ValueError(f"node {child.name!r} already has a parent")
                 child.parent = self
-                self._children.append(child)
+                self.children.append(child)
             return
         for child in children or []:
             self.append(child)
 
-    @property
-    def children(self) -> list[Node]:
-        return self._children
-
     def append(self, child: Node) -> None:
-        self.insert(len(self._children), child)
+        self.insert(len(self.children), child)
 
     def insert(self, index: int, child: Node) -> None:
         if child.parent is not None:
             raise ValueError(f"node {child.name!r} already has a parent")
         child.parent = self
-        self._children.insert(index, child)
+        self.children.insert(index, child)
 
     def remove(self, child: Node) -> int:
         """Detach `child` and return the index it had."""
         index = self.index_of(child)
-        del self._children[index]
+        del self.children[index]
         child.parent = None
         return index
 
@@ -112,12 +118,12 @@ class Composite(Node):
 
     def index_of(self, child: Node) -> int:
         try:  # nodes compare by identity: the list finds it in C
-            return self._children.index(child)
+            return self.children.index(child)
         except ValueError:
             raise ValueError(f"{child.name!r} is not a child of {self.name!r}") from None
 
     def halt(self, world: World) -> None:
-        for child in self._children:
+        for child in self.children:
             if child.status is not IDLE:
                 child.halt(world)
         self.status = IDLE

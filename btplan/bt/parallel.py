@@ -39,11 +39,11 @@ class Parallel(Composite):
         self._failures = 0
 
     def _threshold(self, value: int) -> int:
-        n = len(self._children)
+        n = len(self.children)
         return n + value + 1 if value < 0 else value
 
     def tick(self, world: World) -> Status:
-        children = self._children
+        children = self.children
         need_success = self._threshold(self.success)
         need_failure = self._threshold(self.failure)
         if need_success > len(children):
@@ -69,7 +69,7 @@ class Parallel(Composite):
         return RUNNING
 
     def _finish(self, status: Status, world: World) -> Status:
-        for child in self._children:
+        for child in self.children:
             if child.status is RUNNING:
                 child.halt(world)
         self._reset()

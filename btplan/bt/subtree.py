@@ -26,7 +26,7 @@ class SubTree(Decorator):
         self.board = board
 
     def tick(self, world: World) -> Status:
-        status = self._children[0].tick(world)
+        status = self.children[0].tick(world)
         self.status = RUNNING if status is SKIPPED else status
         return status
 

@@ -133,14 +133,7 @@ class Judge:
         mutexes = self.mutexes
         doers: list[Action] | None = None
         for needs in ways:
-            hit = False
-            proxy: list[GroundLiteral] = []
-            for need in needs:
-                if mutexes is None or not mutexes.knows(need.atom):
-                    proxy.append(need)
-                elif mutexes.excluded(need, held):
-                    hit = True
-                    break
+            hit, proxy = mutexes.screen(needs, held) if mutexes is not None else (False, needs)
             if not hit and proxy:
                 if doers is None:
                     doers = achiever_leaves(earlier)
@@ -158,8 +151,13 @@ class Judge:
             action = grounding.get(leaf.key)
             if action is None:
                 continue
-            for literal in conditions:  # falsifies(action, literal), written out
-                if action.deletes(literal.atom) if literal.positive else literal.atom in action.add:
+            add, delete = action.add, action.delete
+            for atom, positive in conditions:  # falsifies(action, literal), written out
+                if positive:  # action.deletes(atom), the patterns asked only when it has some
+                    if ((atom in delete and atom not in add)
+                            or (action.delete_patterns and action.deletes(atom))):
+                        return True
+                elif atom in add:
                     return True
         return False
 

@@ -158,12 +158,22 @@ class RelaxedModel:
 
         Sums of whole numbers are exact in any order, so the values are those of
         `_sweep_heap`; popping a heap entry per atom was a third of the time on large
-        problems, and only the few distinct values need the heap here.
+        problems, and only the few distinct values need the heap here. An atom enters a
+        bucket only when its cost falls to that bucket's value, so the one whose cost
+        is still that value is in it once: reading it settles it, with no mark kept.
+        An action fires when its last precondition is read (`waiting` falls no lower
+        than 1: nothing reads it after that).
         """
         by_pre, adds, action_cost = self._by_pre_id, self._add_ids, self._action_cost
-        cost = self._start(state)
-        buckets: dict[float, list[int]] = {
-            0.0: [at for at, value in enumerate(cost) if value == 0.0]}
+        ids = self._ids
+        cost = [math.inf] * len(ids)
+        start: list[int] = []
+        for atom in state:
+            at = ids.get(atom)
+            if at is not None:
+                cost[at] = 0.0
+                start.append(at)
+        buckets: dict[float, list[int]] = {0.0: start}
         levels = [0.0]
         for i in self._free:
             for at in adds[i]:
@@ -177,27 +187,27 @@ class RelaxedModel:
                         heapq.heappush(levels, value)
         waiting = list(self._waiting)
         summed = [0.0] * len(waiting)
-        done = [False] * len(cost)
         while levels:
             value = heapq.heappop(levels)
             bucket = buckets[value]
             for at in bucket:  # grows while read when an action costs nothing
-                if done[at] or value > cost[at]:
-                    continue
-                done[at] = True
+                if value > cost[at]:
+                    continue  # settled at a lower value already
                 for i in by_pre[at]:
-                    summed[i] += value
-                    waiting[i] -= 1
-                    if waiting[i] == 0:
-                        total = summed[i] + action_cost[i]
-                        for added in adds[i]:
-                            if total < cost[added]:
-                                cost[added] = total
-                                if total in buckets:
-                                    buckets[total].append(added)
-                                else:
-                                    buckets[total] = [added]
-                                    heapq.heappush(levels, total)
+                    left = waiting[i]
+                    if left > 1:
+                        waiting[i] = left - 1
+                        summed[i] += value
+                        continue
+                    total = summed[i] + value + action_cost[i]
+                    for added in adds[i]:
+                        if total < cost[added]:
+                            cost[added] = total
+                            if total in buckets:
+                                buckets[total].append(added)
+                            else:
+                                buckets[total] = [added]
+                                heapq.heappush(levels, total)
             del buckets[value]
         return cost
 

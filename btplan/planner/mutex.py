@@ -154,25 +154,39 @@ class Mutexes:
                 return True  # rows are symmetric: row i tells of every pair with i
         return False
 
-    def excluded(self, need: GroundLiteral, held: Sequence[GroundLiteral]) -> bool:
-        """`any(self.exclusive(hold, need) for hold in held)` in one call: conflict
-        checks ask it of every need against every earlier sibling's conditions."""
+    def screen(self, needs: Sequence[GroundLiteral], held: Sequence[GroundLiteral]
+               ) -> tuple[bool, list[GroundLiteral]]:
+        """Whether some need that it `knows` cannot hold while the `held` conditions do
+        (`exclusive` with one of them), looking at the needs in order; and the needs
+        before that one, or all, that it does not know (for the caller to judge another
+        way). Conflict checks ask it of each way a new subtree can succeed against each
+        earlier sibling: one call where there were two per need."""
+        unknown: list[GroundLiteral] = []
         if self.groups is not None:
-            return any(self.exclusive(hold, need) for hold in held)
-        atom, positive = need
-        index, reached = self._index, self._reached
-        j = index.get(atom)
-        if not positive or j is None or not reached >> j & 1:
-            j = -1  # only its own negation excludes it
-        for hold in held:
-            if hold.atom == atom:
-                if hold.positive != positive:
-                    return True
-            elif j >= 0 and hold.positive:
-                i = index.get(hold.atom)
-                if i is not None and reached >> i & 1 and not self._rows[i] >> j & 1:
-                    return True
-        return False
+            for need in needs:
+                if not self.knows(need.atom):
+                    unknown.append(need)
+                elif any(self.exclusive(hold, need) for hold in held):
+                    return True, unknown
+            return False, unknown
+        index, reached, rows = self._index, self._reached, self._rows
+        for need in needs:
+            atom, positive = need
+            j = index.get(atom)
+            if j is None:
+                unknown.append(need)
+                continue
+            if not positive or not reached >> j & 1:
+                j = -1  # only its own negation excludes it
+            for hold in held:
+                if hold.atom == atom:
+                    if hold.positive != positive:
+                        return True, unknown
+                elif j >= 0 and hold.positive:
+                    i = index.get(hold.atom)
+                    if i is not None and reached >> i & 1 and not rows[i] >> j & 1:
+                        return True, unknown
+        return False, unknown
 
     def exclusive(self, a: GroundLiteral, b: GroundLiteral) -> bool:
         """True when `a` and `b` can never hold at the same time (as far as h^2 sees)."""

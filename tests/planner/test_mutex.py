@@ -88,9 +88,21 @@ def test_all_pairs_at_once_agree_with_one_pair_at_a_time() -> None:
             assert any(verdicts) and not all(verdicts)
 
 
-def test_one_need_against_many_held_agrees_with_one_pair_at_a_time() -> None:
-    """`excluded(need, held)` says what asking `exclusive(hold, need)` of each held
-    literal says: both signs, the same atom negated, unreached and unknown atoms."""
+def _screened(mutexes: Mutexes, needs: list[GroundLiteral], held: tuple[GroundLiteral, ...]
+              ) -> tuple[bool, list[GroundLiteral]]:
+    unknown: list[GroundLiteral] = []
+    for need in needs:
+        if not mutexes.knows(need.atom):
+            unknown.append(need)
+        elif any(mutexes.exclusive(h, need) for h in held):
+            return True, unknown
+    return False, unknown
+
+
+def test_needs_against_many_held_agree_with_one_pair_at_a_time() -> None:
+    """`screen(needs, held)` says what asking `knows` of each need and `exclusive(hold,
+    need)` of each held literal says, in order: both signs, the same atom negated,
+    unreached and unknown atoms."""
     unknown = Atom("nowhere", ("x",))
     for task in _tasks():
         actions = AchieverIndex(task).relaxed.actions
@@ -98,10 +110,12 @@ def test_one_need_against_many_held_agrees_with_one_pair_at_a_time() -> None:
                         Mutexes(actions, task.initial_state, task.domain, h2_max_atoms=0)):
             atoms = sorted({p.atom for a in actions for p in a.preconditions})[:14] + [unknown]
             literals = [GroundLiteral(a, s) for a in atoms for s in (True, False)]
+            needs = [[n] for n in literals] + [list(c) for c in itertools.combinations(
+                literals[::3], 2)] + [[GroundLiteral(unknown), *literals[:4:2]]]
             verdicts = []
-            for need in literals:
+            for need in needs:
                 for held in itertools.combinations(literals, 2):
-                    verdict = mutexes.excluded(need, held)
-                    assert verdict == any(mutexes.exclusive(h, need) for h in held), (need, held)
-                    verdicts.append(verdict)
+                    verdict = mutexes.screen(need, held)
+                    assert verdict == _screened(mutexes, need, held), (need, held)
+                    verdicts.append(verdict[0])
             assert any(verdicts) and not all(verdicts)
