@@ -242,6 +242,12 @@ class BlendedLoop:
         for node in failed:
             literal = literal_of(node)
             assert literal is not None
+            if literal.holds(state):
+                # Measured again since the tick found it false (a simulator re-plans a
+                # path once the move that drove it halts): nothing to achieve, and its
+                # achievers, looked up in these facts, would be none. The next tick
+                # passes it.
+                continue
             if self._tally[literal] >= STUCK_EXPANSIONS:
                 searched = search_stuck(self, node)  # expanded again and again: going round
                 if searched is not None:

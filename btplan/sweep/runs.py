@@ -131,7 +131,9 @@ def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: s
         # scenarios only (docs/reactivity.md), so the simulator's runs go without them.
         # On `shove` the look-ahead with its deeper look (or the deeper look alone)
         # clears the doorway first and meets the ticks of replanning at p = 0, but
-        # lost runs at p = 0.01 and 0.02 that the tree without it reaches.
+        # loses runs the tree without it reaches (at p = 0, 0.01 and 0.02: moves that
+        # alternate as a cube comes and goes on a path, and an order the tree cannot
+        # complete around a second put-aside pose).
         started = time.process_time()
         models = acting.task_models(task, options)
         setup = time.process_time() - started

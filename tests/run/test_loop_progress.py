@@ -83,3 +83,23 @@ def test_the_conflict_judge_is_made_again_when_guards_or_the_state_change() -> N
     third = loop.judge()
     assert third is not second and third.state == world.facts() and PASSING in third.state
     assert third.guards == second.guards
+
+
+class Remeasured(SymbolicWorld):
+    """As in a simulator whose move re-plans its path once halted: the tick finds the
+    way not free once, on the old path, while the facts read after it say it is."""
+
+    first = True
+
+    def check(self, key: LeafKey) -> bool:
+        if key == ("free", ("tau_goal",)) and self.first:
+            self.first = False
+            return False
+        return super().check(key)
+
+
+def test_a_failed_condition_the_facts_say_holds_is_left_for_the_next_tick() -> None:
+    task = load([str(DOMAIN)])
+    world = Remeasured(task)
+    result = BlendedLoop(task, world).run(100)
+    assert not world.first and result.reached  # no achiever was sought for free(tau_goal)

@@ -1,7 +1,9 @@
 """The domain's conditions, measured on the scene every time they are asked.
 
 Nothing is read from a stored symbolic state, so a change made by an external agent is
-seen on the next tick. `blocks(c, t)` re-plans a stale trajectory before checking it.
+seen on the next tick. `blocks(c, t)` re-plans a stale trajectory before checking it;
+only a cube blocks a trajectory, in `check` as in `facts`: the planner looks achievers
+up in the facts, so a condition false for another reason would have none.
 """
 
 from __future__ import annotations
@@ -43,7 +45,9 @@ class Conditions:
         if name == "on":
             return state.on(args[0], args[1])
         if name == "blocks":
-            found = self.routes.blockers(args[1])
+            # Only cubes block, as in `facts`: a trajectory without a path ("(no path)")
+            # has nothing to put aside, and the move itself fails with why.
+            found = self.routes.blockers(args[1]) & state.sim.cubes.keys()
             return bool(found) if args[0] == "_" else args[0] in found
         if name == "route":
             traj = state.trajectories.get(args[1])

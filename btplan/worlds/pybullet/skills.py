@@ -117,8 +117,13 @@ def grasp_yaws(state: SceneState, cube: str) -> list[float]:
 
 def pick(state: SceneState, timings: Timings, cube: str) -> Script:
     """Face the cube, reach above it, descend, close, lift; SUCCESS once it is in hand."""
-    if state.held is not None or not state.present(cube) or not state.is_near(cube):
+    if state.in_hand() is not None or not state.present(cube) or not state.is_near(cube):
         return FAILURE
+    if state.held is not None:
+        # The fingers closed on a cube that no arm lifted (a pick halted as it lifted):
+        # `hand_empty` holds, so the tree picks again; let go first, or every pick from
+        # here would fail at once.
+        yield from arm.opened(state)
     robot, body = state.sim.robot, state.sim.cubes[cube]
     yield from arm.clear_of_floor(state, timings)
     yield from arm.turn_to(state, facing(state, state.location(cube)))

@@ -311,3 +311,18 @@ def test_a_spot_drop_could_not_reach_is_not_offered_again(
     assert run(room, drop)[0] is SUCCESS and room.check(("hand_empty", ()))
     assert distance(room.state.location("green"), first) > 0.1
     assert room.lessons == 1
+
+
+def test_a_pick_lets_go_of_a_cube_the_fingers_closed_on_but_did_not_lift(
+        room: PyBulletWorld) -> None:
+    """A shove run's pick halted as it lifted left red between closed fingers on the
+    floor: `hand_empty` held, and every pick after it failed at once, to the tick limit."""
+    key = ("Pick", ("green",))
+    status = room.start(key)
+    while status is RUNNING and room.state.held is None:
+        status = room.step(key)
+    assert status is RUNNING and not room.state.lifted("green")
+    room.running.pop(key)  # what that halt left: a grasp on the floor
+    assert room.state.held == "green" and room.check(("hand_empty", ()))
+    assert run(room, key)[0] is SUCCESS
+    assert room.check(("holding", ("green",)))

@@ -76,3 +76,18 @@ def test_a_move_to_a_cube_no_pose_reaches_fails_at_once_and_says_why(
     assert youbot.start(("MoveTo", ("green", name))) is FAILURE
     assert state.base == start
     assert youbot.reasons[-1][1] == "no free pose next to green to drive to"
+
+
+def test_a_way_without_a_path_is_blocked_by_no_cube_and_its_move_says_why(
+        youbot: PyBulletWorld) -> None:
+    """From inside a wall no path leads anywhere. `not blocks(_, t)` used to be false
+    then while the facts named no blocker: the planner found no achiever and the run
+    ended stuck. Only cubes block; the move fails at once, with the reason."""
+    state = youbot.state
+    state.move_base((4.0, -1.8, 0.0))  # the middle of the doorway's south wall
+    name = trajectory_to(youbot, "green")
+    assert not state.trajectories[name].path
+    assert not youbot.check(("blocks", ("_", name)))
+    assert not any(a.predicate == "blocks" and a.args[1] == name for a in youbot.facts())
+    assert youbot.start(("MoveTo", ("green", name))) is FAILURE
+    assert youbot.reasons[-1][1] == "no path from here to green"
