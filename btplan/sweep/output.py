@@ -21,6 +21,7 @@ from btplan.sweep.stats import Estimate, Point
 
 FORMATS = (".csv", ".parquet")
 PLOT_FORMATS = (".png", ".svg", ".pdf")
+MATPLOTLIB_MISSING = "--plot needs matplotlib: pip install 'btplan[bench]'"
 
 
 def check_output(path: str) -> None:
@@ -44,9 +45,6 @@ def check_plot(path: str) -> None:
                          "name it .png, .svg or .pdf")
     if importlib.util.find_spec("matplotlib") is None:
         raise MissingExtraError(MATPLOTLIB_MISSING)
-
-
-MATPLOTLIB_MISSING = "--plot needs matplotlib: pip install 'btplan[bench]'"
 
 
 def _pyarrow() -> None:
