@@ -135,17 +135,32 @@ class RefinedGrounding:
 
     def ground(self, state: frozenset[Atom]) -> Grounding:
         """The grounding with every value the world gives now (rebuilt only when it grew)."""
+        task, candidates = self._grown()
+        if self.current is None or candidates != self._keys:
+            self.current = Grounding(task, self._admitted(task, candidates, state))
+            self._keys = candidates
+        return self.current
+
+    def actions(self, state: frozenset[Atom]) -> list[GroundAction]:
+        """The actions `ground` plans with, as plain grounded actions (no pyperplan task):
+        what the tree's last-resort search plans with (btplan.acting.refined_search)."""
+        task, candidates = self._grown()
+        return self._admitted(task, candidates, state)
+
+    def _grown(self) -> tuple[Task, list[tuple[ActionTemplate, tuple[str, ...]]]]:
+        """The task with every value given so far, and its candidates, asked until no
+        new value comes."""
         for _ in range(ROUNDS):
             task = self._with_values()
             candidates = self._candidates(task)
             if not any(v not in task.object_types for v in self.values):
                 break
-        if self.current is None or candidates != self._keys:
-            actions = [a for t, args in candidates
-                       if (a := admit(task, t, args, self.fluent, state)) is not None]
-            self.current = Grounding(task, actions)
-            self._keys = candidates
-        return self.current
+        return task, candidates
+
+    def _admitted(self, task: Task, candidates: list[tuple[ActionTemplate, tuple[str, ...]]],
+                  state: frozenset[Atom]) -> list[GroundAction]:
+        return [a for t, args in candidates
+                if (a := admit(task, t, args, self.fluent, state)) is not None]
 
     def _with_values(self) -> Task:
         extra = tuple(TypedName(name=v, type=t) for v, t in sorted(self.values.items())

@@ -17,12 +17,18 @@ def search_stuck(loop: LoopState, node: Node) -> Expansion | None:
     options, index = loop.options, loop.index
     if not options.search_stuck:
         return None
-    if loop.rescuer is None:
-        from btplan.planner.rescue import Rescuer  # imported only when something is stuck
+    from btplan.acting.refined_search import RefinedSearch, refines_for
+    from btplan.planner.rescue import Rescuer  # imported only when something is stuck
 
+    if loop.rescuer is None:
         mutexes = index.mutexes if options.mutexes else None
-        loop.rescuer = Rescuer(loop.task, index.subgoal_search, mutexes)
-    rescued = loop.rescuer.rescue(loop.tree, node, loop.world.facts(), loop.deadline)
+        engine = (RefinedSearch(loop.task, loop.world) if refines_for(loop.task, loop.world)
+                  else index.subgoal_search)
+        loop.rescuer = Rescuer(loop.task, engine, mutexes)
+    state = loop.world.facts()
+    if isinstance(loop.rescuer.engine, RefinedSearch):  # the world's values, measured now
+        state = loop.rescuer.engine.observe(state)
+    rescued = loop.rescuer.rescue(loop.tree, node, state, loop.deadline)
     if rescued is None:
         return None
     literal, steps, checks = rescued

@@ -16,6 +16,7 @@ undoing earlier work as needed, and the earlier siblings are wrapped (`merge_pla
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Protocol
 
 from btplan.bt import BehaviorTree, Fallback, Node
 from btplan.bt import Sequence as SequenceNode
@@ -24,9 +25,13 @@ from btplan.planner.conflicts import guarantees, held_before, sequence_slots
 from btplan.planner.expand import GOAL_CHECK, action_node, condition_node, literal_of
 from btplan.planner.mutex import Mutexes
 
-TYPE_CHECKING = False
-if TYPE_CHECKING:  # the engine is given: `regress` alone (plan improvement) needs no search
-    from btplan.planner.search import SubgoalSearch
+
+class Engine(Protocol):
+    """What plans a stuck condition: SubgoalSearch, or one over the values a world refines."""
+
+    def search(self, start: frozenset[Atom], goal: Sequence[GroundLiteral], max_states: int = ...,
+               deadline: float | None = None, keep: Sequence[GroundLiteral] = ()
+               ) -> list[GroundAction] | None: ...
 
 
 def rescue_targets(node: Node) -> list[tuple[Node, GroundLiteral]]:
@@ -187,7 +192,7 @@ class Rescuer:
     searched for: the part already planned by search did not fit.
     """
 
-    def __init__(self, task: Task, engine: SubgoalSearch, mutexes: Mutexes | None) -> None:
+    def __init__(self, task: Task, engine: Engine, mutexes: Mutexes | None) -> None:
         self.task = task
         self.engine = engine
         self.mutexes = mutexes

@@ -23,9 +23,9 @@ from __future__ import annotations
 import heapq
 import itertools
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 
-from btplan.model import Atom, GroundAction, GroundLiteral
+from btplan.model import Atom, GroundAction, GroundLiteral, matches
 from btplan.planner.packed import INFINITE, PackedActions, bits
 
 MAX_STATES = 2000
@@ -38,6 +38,30 @@ SLICE = 64
 """States each search of a `Portfolio` expands in its turn."""
 
 Parents = dict[int, tuple[int, int] | None]
+
+
+def spell_out(actions: Sequence[GroundAction], atoms: Iterable[Atom]) -> list[GroundAction]:
+    """`actions` with their wildcard deletes (`not near(_)`) written out as the `atoms`
+    they match: the search's packed states know plain deletes only, and leaves out an
+    action with a pattern. Exact for every atom of `atoms`; the caller gives every atom
+    a state of the search can hold (the start's, and those the actions add)."""
+    known = set(atoms)
+    for action in actions:
+        known.update(action.add)
+    by_predicate: dict[str, list[Atom]] = {}
+    for atom in known:
+        by_predicate.setdefault(atom.predicate, []).append(atom)
+    out: list[GroundAction] = []
+    for action in actions:
+        if not action.delete_patterns:
+            out.append(action)
+            continue
+        hit = {a for p in action.delete_patterns for a in by_predicate.get(p.predicate, ())
+               if matches(p, a) and a not in action.add}
+        out.append(action.model_copy(update={
+            "delete": tuple(dict.fromkeys([*action.delete, *sorted(hit, key=str)])),
+            "delete_patterns": ()}))
+    return out
 
 
 class SubgoalSearch:

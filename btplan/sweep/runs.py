@@ -126,23 +126,25 @@ def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: s
                    else replace(acting.ACTING_OPTIONS, stall_limit=max_ticks,
                                 expansions_per_tick=EXPANSIONS))
         # Look-ahead refines later actions before the robot moves; in the simulator their
-        # trajectories would start from where the robot stands now, and go stale. Goal
-        # credit and finishing a halted action first were measured on the symbolic
-        # scenarios only (docs/reactivity.md), so the simulator's runs go without them.
-        # On `shove` the look-ahead with its deeper look (or the deeper look alone)
-        # clears the doorway first and meets the ticks of replanning at p = 0, but
-        # loses runs the tree without it reaches (at p = 0, 0.01 and 0.02: moves that
-        # alternate as a cube comes and goes on a path, and an order the tree cannot
-        # complete around a second put-aside pose).
+        # trajectories would start from where the robot stands now, and go stale. The
+        # deeper look alone refines nothing ahead: it expands a later condition early only
+        # when its achiever would make the robot give up what it is about to hold (on
+        # `shove`, it clears the doorway before green is picked up). Goal credit was
+        # measured on the symbolic scenarios only (docs/reactivity.md), so the simulator's
+        # runs go without it. Finishing a halted action first counts in both: on `shove`,
+        # a Pick whose cube once blocked the path ahead is halted by that path's check as
+        # the fingers close, and started again by the branch that puts the cube aside;
+        # without it, the pick starts over every time and the run goes round.
         started = time.process_time()
         models = acting.task_models(task, options)
         setup = time.process_time() - started
         outcome = acting.run(task, agents=agents, world=world, seed=seed,
                              max_ticks=max_ticks, options=options, models=models,
                              look_ahead=method == "btplan" and job.sim == "symbolic",
+                             look_deeper=method == "btplan",
                              scope_moves=method == "btplan",
                              goal_credit=method == "btplan" and job.sim == "symbolic",
-                             finish_first=method == "btplan" and job.sim == "symbolic")
+                             finish_first=method == "btplan")
     finally:
         if hasattr(world, "close"):
             world.close()
