@@ -15,7 +15,6 @@ from typing import Any
 from btplan.errors import InputError, MissingExtraError
 from btplan.model import (
     EQUALITY,
-    WILDCARD,
     ActionTemplate,
     Atom,
     GroundAction,
@@ -23,6 +22,7 @@ from btplan.model import (
     Task,
     instantiate,
 )
+from btplan.planner.grounding import wildcard_instances
 
 
 def require_pyperplan() -> None:
@@ -173,13 +173,7 @@ def admit(task: Task, template: ActionTemplate, args: tuple[str, ...], fluent: s
 def instances(literal: GroundLiteral, task: Task) -> list[GroundLiteral]:
     """A precondition as plain literals: `not blocks(_, t)` is `not blocks(o, t)` for
     every object o the wildcard can stand for (the predicate's parameter type)."""
-    if literal.positive or WILDCARD not in literal.atom.args:
-        return [literal]
-    declared = task.domain.predicate_map[literal.atom.predicate].parameters
-    choices = [task.objects_of(p.type) if a == WILDCARD else (a,)
-               for a, p in zip(literal.atom.args, declared)]
-    return [GroundLiteral(Atom(literal.atom.predicate, args), False)
-            for args in itertools.product(*choices)]
+    return [literal] if literal.positive else wildcard_instances(literal, task)
 
 
 def _undoes(action: GroundAction, negative: GroundLiteral) -> bool:

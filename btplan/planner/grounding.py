@@ -10,10 +10,20 @@ parameter is asked of the refiner (the world backend) instead of enumerated.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Container, Iterator, Mapping
 
-from btplan.model import EQUALITY, ActionTemplate, Atom, Literal, Parameter, Task
+from btplan.model import (
+    EQUALITY,
+    WILDCARD,
+    ActionTemplate,
+    Atom,
+    GroundLiteral,
+    Literal,
+    Parameter,
+    Task,
+)
 from btplan.planner.protocol import Refiner
 
 _NONE: frozenset[str] = frozenset()
@@ -315,3 +325,15 @@ def unify(
             return None  # a value the world refined (pose3) is not a task object: allowed
         binding[name] = value
     return binding
+
+
+def wildcard_instances(literal: GroundLiteral, task: Task) -> list[GroundLiteral]:
+    """A literal as plain ones: `not blocks(_, t)` is `not blocks(o, t)` for every object
+    o of the task the wildcard can stand for (the predicate's parameter type)."""
+    if WILDCARD not in literal.atom.args:
+        return [literal]
+    declared = task.domain.predicate_map[literal.atom.predicate].parameters
+    choices = [task.objects_of(p.type) if a == WILDCARD else (a,)
+               for a, p in zip(literal.atom.args, declared)]
+    return [GroundLiteral(Atom(literal.atom.predicate, args), literal.positive)
+            for args in itertools.product(*choices)]

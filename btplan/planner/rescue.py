@@ -20,9 +20,10 @@ from typing import Protocol
 
 from btplan.bt import BehaviorTree, Fallback, Node
 from btplan.bt import Sequence as SequenceNode
-from btplan.model import Atom, GroundAction, GroundLiteral, Task
+from btplan.model import WILDCARD, Atom, GroundAction, GroundLiteral, Task
 from btplan.planner.conflicts import guarantees, held_before, sequence_slots
 from btplan.planner.expand import GOAL_CHECK, action_node, condition_node, literal_of
+from btplan.planner.grounding import wildcard_instances
 from btplan.planner.mutex import Mutexes
 
 
@@ -67,15 +68,20 @@ def search_goal(
     return goal
 
 
-def regress(goal: Sequence[GroundLiteral], plan: Sequence[GroundAction]) -> list[list[GroundLiteral]]:
+def regress(goal: Sequence[GroundLiteral], plan: Sequence[GroundAction],
+            task: Task | None = None) -> list[list[GroundLiteral]]:
     """For each step i, what must hold before it for steps i.. to reach `goal`.
 
     Regression through an action drops what it makes true and adds its preconditions.
+    With `task`, a wildcard negative the action makes true in part (`not blocks(_, t)`
+    through putting blue aside, which deletes `blocks(blue, _)`) leaves the part it does
+    not: `not blocks(o, t)` for every other cube o (`_rest`). Without it the whole
+    wildcard is needed before, and a plan that clears a path is never started.
     """
     needed = list(dict.fromkeys(goal))
     out: list[list[GroundLiteral]] = []
     for action in reversed(plan):
-        kept = [g for g in needed if not _achieves(action, g)]
+        kept = [k for g in needed if not _achieves(action, g) for k in _rest(action, g, task)]
         needed = list(dict.fromkeys([*action.preconditions, *kept]))
         out.append(needed)
     out.reverse()
@@ -86,6 +92,32 @@ def _achieves(action: GroundAction, literal: GroundLiteral) -> bool:
     if literal.positive:
         return literal.atom in action.add
     return action.deletes(literal.atom)
+
+
+def _rest(action: GroundAction, literal: GroundLiteral, task: Task | None) -> list[GroundLiteral]:
+    """What of `literal` must hold before `action` so that it holds after (not achieved
+    by the action as a whole): the literal itself, or the instances of a wildcard
+    negative that the action's pattern deletes do not cover.
+
+    Only where the wildcard stands for the task's objects alone: a value a world refines
+    (a pose is a location) could make another instance true, and none would check it.
+    """
+    if task is None or literal.positive or not action.delete_patterns \
+            or WILDCARD not in literal.atom.args or not _enumerable(literal, task):
+        return [literal]
+    instances = wildcard_instances(literal, task)
+    rest = [i for i in instances if not action.deletes(i.atom)]
+    return [literal] if len(rest) == len(instances) else rest
+
+
+def _enumerable(literal: GroundLiteral, task: Task) -> bool:
+    """Whether every object a wildcard of `literal` stands for is one of the task's: no
+    refined parameter gives values of the wildcard's type."""
+    domain = task.domain
+    declared = domain.predicate_map[literal.atom.predicate].parameters
+    wild = [p.type for a, p in zip(literal.atom.args, declared) if a == WILDCARD]
+    refined = {p.type for a in domain.actions for p in a.parameters if p.refined}
+    return not any(domain.is_subtype(r, w) for r in refined for w in wild)
 
 
 def plan_alternatives(
@@ -101,7 +133,7 @@ def plan_alternatives(
     """
     checks: list[Node] = []
     alternatives: list[Node] = []
-    for needed, action in reversed(list(zip(regress(goal, plan), plan, strict=True))):
+    for needed, action in reversed(list(zip(regress(goal, plan, task), plan, strict=True))):
         step = [condition_node(lit, task) for lit in needed]
         checks += step
         alternatives.append(SequenceNode([*step, action_node(action)]))
