@@ -7,7 +7,8 @@ pusher is a dynamic body with a U-shaped front pocket that keeps the cube centre
 driven by velocity, set before every physics step: it drives in from outside the scene
 along an OMPL path that avoids walls, cubes and the robot, turns to face the push, pushes
 the cube along a straight line until the cube's centre reaches the target, backs off and
-drives out again. A push that makes no progress (a wall, the robot) is given up.
+drives out again (or, with no free way out, leaves the scene at once). A push that makes
+no progress (a wall, the robot) is given up.
 """
 
 from __future__ import annotations
@@ -148,7 +149,8 @@ class Pusher:
         if self.push is None:                # it enters the scene at `home`
             here = home
             self._put(home, math.atan2(stage[1] - home[1], stage[0] - home[0]))
-        push.route = self._route(here, stage)
+        # No free way in: straight along the line, and the physics decides what it bumps.
+        push.route = self._route(here, stage) or [stage]
         self.push = push
 
     def _edge(self, at: Point, d: Point) -> Point:
@@ -159,9 +161,9 @@ class Pusher:
         k = min(steps) + OUTSIDE
         return (at[0] + d[0] * k, at[1] + d[1] * k)
 
-    def _route(self, start: Point, goal: Point) -> list[Point]:
-        """An OMPL path for the pusher's disc (walls, cubes and the robot avoided), or the
-        straight line when there is none: then the physics decides what it bumps into."""
+    def _route(self, start: Point, goal: Point) -> list[Point] | None:
+        """An OMPL path for the pusher's disc (walls, cubes and the robot avoided), or
+        None when there is none."""
         state, sim = self.state, self.state.sim
         x0, x1, y0, y1 = state.scene.bounds
         wide = (x0 - 2 * OUTSIDE, x1 + 2 * OUTSIDE, y0 - 2 * OUTSIDE, y1 + 2 * OUTSIDE)
@@ -181,10 +183,10 @@ class Pusher:
         # straight line, shoving any cube on it out of the scene.
         here = (*start, 0.0) if valid(*start) else motion.escape((*start, 0.0), valid, ESCAPE)
         if here is None:
-            return [goal]
+            return None
         plan = motion.plan_se2(here, (*goal, 0.0), valid, wide, PUSHER_ITERATIONS)
         if plan is None:
-            return [goal]
+            return None
         self.plan_seconds += plan.seconds
         lead = [] if here[:2] == start else [(here[0], here[1])]
         return lead + [(q[0], q[1]) for q in plan.path[1:]]
@@ -233,10 +235,16 @@ class Pusher:
         elif push.phase == "back":
             push.phase = "out"
             (x, y), _ = self._pose()
-            push.route = self._route((x, y), push.home)
+            route = self._route((x, y), push.home)
+            if route is None:
+                # No free way out (cubes and walls close round it): it leaves the scene
+                # at once. Driven out in a straight line, it shoved whatever lay on the
+                # line across the floor, 3 m into a corner no robot pose reaches.
+                self._park()
+            else:
+                push.route = route
         else:                                # out of the scene: park until the next job
-            self._put((0.0, 0.0), 0.0, PARKED_Z)
-            self.push = None
+            self._park()
 
     def _push(self, push: Push, at: Point) -> None:
         """Drive along the line; stop once the cube's centre is at the target."""
@@ -299,6 +307,11 @@ class Pusher:
         v, _ = p.getBaseVelocity(self.body, physicsClientId=self.client)
         p.resetBaseVelocity(self.body, [linear[0], linear[1], min(0.0, v[2])],
                             [0.0, 0.0, turn], physicsClientId=self.client)
+
+    def _park(self) -> None:
+        """Out of the scene until the next job."""
+        self._put((0.0, 0.0), 0.0, PARKED_Z)
+        self.push = None
 
     def _put(self, at: Point, yaw: float, z: float = 0.051) -> None:
         """Set the pusher down (entering the scene from outside) or park it (at rest)."""

@@ -169,3 +169,37 @@ def test_a_pusher_that_ends_beside_the_robot_drives_out_round_the_cubes() -> Non
                                  (4.54, -0.55)) > RADIUS for k in range(n + 1))
     finally:
         world.close()
+
+
+def test_a_pusher_with_no_free_way_out_leaves_the_scene_without_driving_through_cubes(
+        tmp_path: Path) -> None:
+    """A shove run (repair, seed 12 at p = 0): with no free way out, the pusher drove out
+    in a straight line and shoved green, lying on the line, 3 m into a corner where no
+    base pose beside it is free; every later MoveTo(green) failed at once. Now it leaves
+    the scene at once."""
+    from btplan.worlds.pybullet.pusher import Push, Pusher
+    from btplan.worlds.pybullet.sim import PARKED_Z
+
+    world = open_world(TASK, write_scene(tmp_path), seed=0)
+    try:
+        state = world.state
+        pusher = Pusher(state)
+        robot = state.base
+        # Beside the robot, deeper in the disc kept round it than an escape reaches.
+        inside = (robot[0] + 0.1, robot[1])
+        assert pusher._route(inside, (10.0, 0.0)) is None
+        pusher._put(inside, 0.0)
+        on_the_line = (inside[0] + 0.8, inside[1])  # on the straight way to the home at x = 10
+        state.put("green", on_the_line)
+        push = Push("shove", "green", (3.0, 0.0), False, (10.0, 0.0), 0.0, phase="back")
+        pusher.push = push
+        pusher._arrived(push)
+        assert pusher.push is None
+        for _ in range(48):
+            state.sim.step()
+        (_, _, z), _ = state.sim.p.getBasePositionAndOrientation(
+            pusher.body, physicsClientId=state.sim.client)
+        assert z < PARKED_Z / 2  # parked below the floor, not driving
+        assert math.dist(at(world, "green"), on_the_line) < 0.005
+    finally:
+        world.close()
