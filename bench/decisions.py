@@ -23,7 +23,8 @@ from typing import Any
 
 from btplan import acting
 from btplan.acting.baselines import run_baseline
-from btplan.sweep.runs import EXPANSIONS, Job, prepared
+from btplan.acting.extended import EXPANSIONS
+from btplan.sweep.runs import Job, prepared
 from btplan.worlds.symbolic import SymbolicWorld
 
 FILES = {"obstacle": "domains/pick_place_obstacle.bt",

@@ -40,6 +40,7 @@ EXAMPLES = """Examples:
 
   btplan run domains/pick_place.bt --disturb undo:Pick@11 --rate 4
   btplan run domains/pick_place_obstacle.bt --scenario examples/example2.dist
+  btplan run domains/pick_place_obstacle.bt --scenario examples/example2.dist --extended
   btplan run domains/youbot.bt --sim pybullet -q --trace run.jsonl --plan-out p.plan
   btplan run domains/pick_place.bt --plan-out - | wc -l
 """
@@ -83,6 +84,12 @@ def run(
         help="Ticks per second, to watch (default: as fast as possible).")] = None,
     quiet: Annotated[bool, typer.Option(
         "-q", "--quiet", help="No live view and no progress; the summary only.")] = False,
+    extended: Annotated[bool, typer.Option(
+        "--extended",
+        help="Act as `btplan sweep --method btplan` measures it (docs/reactivity.md): up to "
+             "64 expansions per tick, look-ahead, scoped moves, goal credit, a halted "
+             "action finished first. Without it, the loop of Algorithm 1, one expansion per tick.")
+    ] = False,
     gui: Annotated[bool, typer.Option(
         "--gui", help="Open the PyBullet window (--sim pybullet).")] = False,
     record: Annotated[str | None, typer.Option(
@@ -125,7 +132,7 @@ def run(
         try:
             with RunFiles(trace, plan_out, world) as files:
                 result = _act(task, world, specs, scene_agents, seed, max_ticks, rate, quiet,
-                              files.add, stop, WORLD_NAMES[sim])
+                              files.add, stop, WORLD_NAMES[sim], extended, sim is not Sim.symbolic)
         finally:
             if hasattr(world, "close"):
                 world.close()  # closes a recording into a playable file, interrupted or not
@@ -188,9 +195,14 @@ class RunFiles:
 
 def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Agent], seed: int,
          max_ticks: int, rate: float | None, quiet: bool, keep: Callable[[TickRecord], None],
-         stop: Callable[[], bool], world_name: str) -> acting.RunOutcome:
+         stop: Callable[[], bool], world_name: str, extended: bool, simulated: bool
+         ) -> acting.RunOutcome:
     """Act, with the live view on a terminal, progress lines in a pipe, or nothing (-q)."""
     from btplan import acting
+    from btplan.acting.extended import NONE, extended_options, extensions
+
+    options = extended_options() if extended else None
+    settings = extensions(simulated) if extended else NONE
 
     def run_with(view: Callable[[Node, Mapping[int, Status], TickRecord], None] | None
                  ) -> acting.RunOutcome:
@@ -201,7 +213,7 @@ def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Ag
 
         return acting.run(task, disturb=specs, agents=scene_agents, world=world, seed=seed,
                           max_ticks=max_ticks, view=each, rate=rate, stop=stop,
-                          world_name=world_name)
+                          world_name=world_name, options=options, **settings)
 
     if quiet:
         return run_with(None)

@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import functools
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 from btplan import acting
 from btplan.acting.baselines import BASELINES, run_baseline
+from btplan.acting.extended import NONE, extended_options, extensions
 from btplan.errors import BtplanError, InputError, Span
 from btplan.model import Task
 from btplan.planner import PlannerOptions
@@ -34,10 +35,6 @@ TIMED = ("planning_seconds", "setup_seconds")
 """Columns that vary between two runs of the same seed (everything else repeats)."""
 
 Row = dict[str, Any]
-
-EXPANSIONS = 64
-"""Expansions the `btplan` method may make within one tick before the world moves on
-(the baselines too plan and start acting in the same tick); `btplan-paper` makes one."""
 
 
 @dataclass(frozen=True)
@@ -122,29 +119,17 @@ def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: s
                     "setup_seconds": out.setup_seconds,
                     "checks": out.checks / max(out.ticks, 1),
                     "disturbances": out.disturbances, "reason": out.reason}
-        options = (PlannerOptions.paper(stall_limit=max_ticks) if method == "btplan-paper"
-                   else replace(acting.ACTING_OPTIONS, stall_limit=max_ticks,
-                                expansions_per_tick=EXPANSIONS))
-        # Look-ahead refines later actions before the robot moves; in the simulator their
-        # trajectories would start from where the robot stands now, and go stale. The
-        # deeper look alone refines nothing ahead: it expands a later condition early only
-        # when its achiever would make the robot give up what it is about to hold (on
-        # `shove`, it clears the doorway before green is picked up). Goal credit was
-        # measured on the symbolic scenarios only (docs/reactivity.md), so the simulator's
-        # runs go without it. Finishing a halted action first counts in both: on `shove`,
-        # a Pick whose cube once blocked the path ahead is halted by that path's check as
-        # the fingers close, and started again by the branch that puts the cube aside;
-        # without it, the pick starts over every time and the run goes round.
+        if method == "btplan-paper":
+            options, settings = PlannerOptions.paper(stall_limit=max_ticks), NONE
+        else:
+            options = extended_options(stall_limit=max_ticks)
+            settings = extensions(simulated=job.sim != "symbolic")
         started = time.process_time()
         models = acting.task_models(task, options)
         setup = time.process_time() - started
         outcome = acting.run(task, agents=agents, world=world, seed=seed,
                              max_ticks=max_ticks, options=options, models=models,
-                             look_ahead=method == "btplan" and job.sim == "symbolic",
-                             look_deeper=method == "btplan",
-                             scope_moves=method == "btplan",
-                             goal_credit=method == "btplan" and job.sim == "symbolic",
-                             finish_first=method == "btplan")
+                             **settings)
     finally:
         if hasattr(world, "close"):
             world.close()

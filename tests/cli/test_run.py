@@ -134,6 +134,39 @@ def test_a_pybullet_run_acts_with_the_scene_agents(tmp_path: Path) -> None:
                for line in lines for e in line["expansions"])
 
 
+def test_extended_grows_the_tree_within_a_tick_and_watches_the_way_ahead(
+        tmp_path: Path) -> None:
+    obstacle = str(DOMAINS / "pick_place_obstacle.bt")
+
+    def expansions(*flags: str) -> list[tuple[int, list[str]]]:
+        trace = tmp_path / "run.jsonl"
+        result = runner.invoke(app, ["run", obstacle, "--disturb",
+                                     "set:blocks(sphere, tau_goal)@3", "-q",
+                                     "--trace", str(trace), *flags])
+        assert result.exit_code == 0, result.output
+        lines = [json.loads(line) for line in trace.read_text().splitlines()]
+        return [(line["tick"], [e["condition"] for e in line["expansions"]])
+                for line in lines if line["expansions"]]
+
+    plain, extended = expansions(), expansions("--extended")
+    # One expansion per tick, and the blocked path is met only when MoveTo(goal) is next.
+    assert all(len(conditions) == 1 for _, conditions in plain)
+    assert ("not blocks(_, tau_goal)" in dict(plain)[8])
+    # Extended: the whole plan at tick 1, the blocked path the tick the agent blocks it.
+    assert extended[0] == (1, ["on(cube, goal)", "holding(cube)", "near(goal)", "near(cube)"])
+    assert extended[1][0] == 3 and extended[1][1][0] == "not blocks(_, tau_goal)"
+
+
+@pytest.mark.slow
+def test_extended_in_pybullet_clears_the_doorway_before_it_picks_green() -> None:
+    result = runner.invoke(app, ["run", str(DOMAINS / "youbot.bt"), "--sim", "pybullet",
+                                 "--extended", "--quiet", "--plan-out", "-"])
+    assert result.exit_code == 0, result.output
+    plan = result.stdout.splitlines()
+    assert plan[:2] == ["(moveto blue traj3)", "(pick blue)"]
+    assert plan[-1] == "(place green goal)"
+
+
 def test_on_a_terminal_the_live_view_draws_the_tree(monkeypatch: pytest.MonkeyPatch) -> None:
     from io import StringIO
 
