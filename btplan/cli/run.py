@@ -88,7 +88,8 @@ def run(
         "--extended",
         help="Act as `btplan sweep --method btplan` measures it (docs/reactivity.md): up to "
              "64 expansions per tick, look-ahead, scoped moves, goal credit, a halted "
-             "action finished first. Without it, the loop of Algorithm 1, one expansion per tick.")
+             "action finished first, a failing action retried until --max-ticks. Without "
+             "it, the loop of Algorithm 1, one expansion per tick.")
     ] = False,
     gui: Annotated[bool, typer.Option(
         "--gui", help="Open the PyBullet window (--sim pybullet).")] = False,
@@ -201,7 +202,7 @@ def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Ag
     from btplan import acting
     from btplan.acting.extended import NONE, extended_options, extensions
 
-    options = extended_options() if extended else None
+    options = extended_options(stall_limit=max_ticks) if extended else None
     settings = extensions(simulated) if extended else NONE
 
     def run_with(view: Callable[[Node, Mapping[int, Status], TickRecord], None] | None

@@ -157,6 +157,16 @@ def test_extended_grows_the_tree_within_a_tick_and_watches_the_way_ahead(
     assert extended[1][0] == 3 and extended[1][1][0] == "not blocks(_, tau_goal)"
 
 
+def test_extended_retries_a_failing_action_within_the_tick_budget() -> None:
+    flags = ["run", PICK_PLACE, "--disturb", "fail:Pick@1..8", "--quiet"]
+    plain = runner.invoke(app, flags)
+    assert plain.exit_code == 1
+    assert "failed 4 ticks in a row" in plain.stderr
+    extended = runner.invoke(app, [*flags, "--extended"])
+    assert extended.exit_code == 0, extended.output
+    assert "goal reached" in extended.stderr
+
+
 @pytest.mark.slow
 def test_extended_in_pybullet_clears_the_doorway_before_it_picks_green() -> None:
     result = runner.invoke(app, ["run", str(DOMAINS / "youbot.bt"), "--sim", "pybullet",
