@@ -121,3 +121,13 @@ class Interrupted(BtplanError):
 
 class MissingExtraError(BtplanError):
     """An optional dependency a feature needs is not installed; the message names the extra."""
+
+
+class SkillError(BtplanError):
+    """A robot's skill raised, and the run was set to stop on it (`stop_on_skill_error`).
+
+    `action` names the grounded action, `reason` the skill's own message."""
+
+    def __init__(self, action: str, reason: str) -> None:
+        super().__init__(f"{action} raised: {reason}")
+        self.action, self.reason = action, reason

@@ -123,7 +123,7 @@ def _rounds(
     """The runs of one attempt, each from the initial state."""
     task, seed, deadline, stop, on_expansion = (run.task, run.seed, run.deadline, run.stop,
                                                 run.on_expansion)
-    world = loop.world
+    world = loop.skills.world
     assert isinstance(world, SymbolicWorld)
     loop.deadline = deadline
     ticks_left = run.max_ticks

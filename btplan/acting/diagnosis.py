@@ -15,7 +15,9 @@ from btplan.planner import AchieverIndex
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from typing import Any, Protocol
+    from typing import Protocol
+
+    from btplan.acting.skills import Skills
 else:
     Protocol = object  # a protocol only types: a plain base at run time
 
@@ -34,7 +36,7 @@ def most_expanded(expansions: Sequence[_Named], count: int = 3) -> str:
 
 def no_achiever_reason(missing: Sequence[GroundLiteral], index: AchieverIndex,
                        circular: Collection[GroundLiteral], expansions: int,
-                       world: Any) -> str:
+                       skills: Skills) -> str:
     """Say which kind of dead end it is: no achiever at all, or none from here."""
     never = sorted({str(c) for c in missing if not index.has_effect(c)})
     cycled = sorted({str(c) for c in missing if c in circular})
@@ -49,7 +51,7 @@ def no_achiever_reason(missing: Sequence[GroundLiteral], index: AchieverIndex,
     if never:
         parts.append("no action of the domain can make " + " or ".join(never) + " hold")
     if lost:
-        recent = [str(a) for a in getattr(world, "executed", [])[-4:]]
+        recent = [str(a) for a in skills.executed[-4:]]
         parts.append(
             f"stuck after {expansions} expansions: no action can make "
             + " or ".join(lost) + " hold from the state the tree led to (every achiever"
@@ -64,12 +66,12 @@ def failing_actions(root: Node) -> list[str]:
     return sorted({n.name for n in root.walk() if isinstance(n, Action) and n.status is FAILURE})
 
 
-def loop_reason(expansions: int, world: Any) -> str:
+def loop_reason(expansions: int, skills: Skills) -> str:
     """The world came back to a state it was in, under the same tree."""
-    recent = [str(a) for a in getattr(world, "executed", [])[-6:]]
+    recent = [str(a) for a in skills.executed[-6:]]
     tail = f"; last actions: {', '.join(recent)}" if recent else ""
-    dead_ends = getattr(world, "dead_ends", None)  # a world may know what it cannot do
-    found = dead_ends() if callable(dead_ends) else []
+    # a world may know what it cannot do
+    found = skills.world.dead_ends() if skills.capabilities.dead_ends else []  # type: ignore[attr-defined]
     known = f"; {'; '.join(found)}" if found else ""
     return (
         "the world came back to an earlier state with no new expansion "

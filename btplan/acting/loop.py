@@ -15,6 +15,7 @@ from collections.abc import Callable
 
 from btplan.acting.ahead import later_false
 from btplan.acting.choice import achievers_for
+from btplan.acting.config import ActingConfig
 from btplan.acting.diagnosis import failing_actions, loop_reason, most_expanded, no_achiever_reason
 from btplan.acting.early import expand_ahead, expand_broken, expand_if_forced
 from btplan.acting.finish import FinishFirst
@@ -24,6 +25,7 @@ from btplan.acting.protect import protect
 from btplan.acting.regrow import reexpand
 from btplan.acting.scope import lineage, scope_moved
 from btplan.acting.searched import adopt_plan, search_stuck
+from btplan.acting.skills import Skills
 from btplan.acting.state import Expansion, RunResult, TickReport
 from btplan.bt import (
     FAILURE,
@@ -55,6 +57,8 @@ from btplan.planner.achievers import guards
 from btplan.planner.agenda import goal_agenda, state_orders
 from btplan.planner.expand import goal_check, guard_nodes
 from btplan.planner.lookahead import closest_first
+from btplan.robot.contract import World
+from btplan.robot.refine import ConstraintRefiner
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:  # backjump (blame), protect (an option) and rescue: when first used
@@ -74,6 +78,9 @@ again for every ball, blocksworld's hand empty again for every block moved."""
 
 BACKTRACKS = 2
 """Further batches of achievers tried when the first has no conflict-free place."""
+
+_NO_DEPARTURES = ActingConfig.paper()
+"""The departures of a loop given no configuration: none (offline planning's)."""
 
 
 def _unexpand(tree: BehaviorTree, subtree: Fallback, condition: Node) -> None:
@@ -102,46 +109,43 @@ class BlendedLoop:
     def __init__(
         self,
         task: Task,
-        world: PlanningWorld,
+        world: World,
         options: PlannerOptions | None = None,
         like: AchieverIndex | None = None,
-        look_ahead: bool = False,
         banned: frozenset[Choice] = frozenset(),
-        scope_moves: bool = False,
-        goal_credit: bool = False,
-        finish_first: bool = False,
-        look_deeper: bool = False,
+        config: ActingConfig | None = None,
     ) -> None:
-        """`like`: an index of the same task to share models with; `look_ahead`: also
-        expand, in the same tick, the later preconditions that are false (btplan.acting.ahead),
-        and the conditions ahead of the running action that an outside change broke
-        (btplan.acting.watch);
-        `banned`: (condition, action) choices never used (btplan.planner.backjump);
-        `scope_moves`: skip a moved subtree while what it was moved for holds
-        (btplan.acting.scope); `goal_credit`: rank first achievers that make other goals
-        true (btplan.acting.credit), and set up the step of another goal an achiever
-        enables (btplan.acting.prepare); `finish_first`: finish a halted action that does
-        not interfere with the one started instead (btplan.acting.finish);
-        `look_deeper`: without `look_ahead`, expand a later false precondition early
-        only when a precondition of its achiever would make the robot give up what is
-        held before it (btplan.acting.ahead; `look_ahead` includes this)."""
+        """`options`: the planner's (by default `config.loop_planner`); `like`: an index of
+        the same task to share models with; `banned`: (condition, action) choices never
+        used (btplan.planner.backjump); `config`: which departures from Algorithm 1 act
+        (btplan.acting.config; none when not given, as offline planning runs it).
+
+        The world is reached through `Skills` (btplan.acting.skills): the loop keeps the
+        logs of the robot's actions and runs each grounded action at most once at a time."""
+        departures = config or _NO_DEPARTURES
+        self.config = departures
+        look_ahead = departures.expand_later_preconditions
         self.banned = banned
         self.culprits: list[Choice] = []
         """When planning stopped: the achiever choices to give up first (backjump.py)."""
         self.task = task
         self.look_ahead = look_ahead
-        self.scope_moves = scope_moves
-        self.goal_credit = goal_credit
+        self.scope_moves = departures.skip_moved_while_held
+        self.goal_credit = departures.credit_other_goals
         self.optional: set[Node] = set()
         """Conditions added before an achiever for another goal (btplan.acting.prepare)."""
         self.relaxed_plans: object | None = None
         """The relaxed plans of the index's relaxed model, kept once prepare.py asked."""
         self.ahead: list[Node] = []
-        self.look_deeper = look_deeper
+        self.look_deeper = departures.expand_when_forced
+        self.finish_first = departures.finish_halted_action
         self.forcing: list[Node] = []
         """Later false preconditions expanded now only if their achiever forces (ahead.py)."""
-        self.world = world
-        self.options = options or PlannerOptions()
+        self.options = options or (departures.loop_planner if config else PlannerOptions())
+        self.grounding: dict[LeafKey, GroundAction] = {}
+        self.skills = self._skills_for(world)
+        self.world: PlanningWorld = self.skills
+        """The world as planning and the departures see it: `Skills` over the robot."""
         self.index = AchieverIndex(task, self.options, like)
         order = None
         if self.options.goal_agenda and self.options.mutexes and len(task.goal_literals) > 1:
@@ -151,8 +155,7 @@ class BlendedLoop:
             order = goal_agenda(task.goal_literals, relaxed.producers, self.index.mutexes,
                                 extra)
         self.tree = initial_tree(task, order)
-        self.grounding: dict[LeafKey, GroundAction] = {}
-        self.finishing = FinishFirst(world, self.grounding) if finish_first else None
+        self.finishing = FinishFirst(self.skills, self.grounding) if self.finish_first else None
         self.expansions: list[Expansion] = []
         self.ticks = 0
         self.expanded: set[Node] = set()
@@ -176,12 +179,19 @@ class BlendedLoop:
             self.expanded.update(check.children)
             self.dead.update(check.children)
 
-    def use_world(self, world: PlanningWorld) -> None:
+    def _skills_for(self, world: World) -> Skills:
+        refiner = None if callable(getattr(world, "refine", None)) else \
+            ConstraintRefiner(self.task, lambda: self.skills.facts())
+        return Skills(world, self.grounding, self.config.stop_on_skill_error, refiner)
+
+    def use_world(self, world: World) -> None:
         """Keep the tree and continue against another world (a fresh run from the start)."""
-        self.tree.halt(self.world)
-        self.world = world
+        self.tree.halt(self.skills)
+        self.skills.halt_all(self.config.halt_wait)
+        self.skills = self._skills_for(world)
+        self.world = self.skills
         if self.finishing is not None:
-            self.finishing = FinishFirst(world, self.grounding)
+            self.finishing = FinishFirst(self.skills, self.grounding)
         self._circles.forget()
         self._last_state = None
         self._stalls = 0
@@ -197,7 +207,8 @@ class BlendedLoop:
         if self.look_ahead and self._last_state is not None and before != self._last_state:
             expand_broken(self, report, self._last_state)
         while True:
-            status = report.status = self.tree.tick(self.finishing or self.world)
+            self.skills.begin_tick()
+            status = report.status = self.tree.tick(self.finishing or self.skills)
             if status is not FAILURE:
                 self._stalls = 0
                 break
@@ -222,13 +233,13 @@ class BlendedLoop:
         if self.finishing is not None:
             self.finishing.end_tick()
         after = self.world.facts()
-        if self._circles.repeated(self.world, before, after, len(self.expansions)):
-            executed = getattr(self.world, "executed", [])
+        if self._circles.repeated(self.skills, before, after, len(self.expansions)):
+            executed = self.skills.executed
             if executed:  # the same state under the same tree: drop what ran in the loop
                 from btplan.planner.backjump import running_choices
 
                 self.culprits = running_choices(self.tree.root, executed[-1].key)
-            raise NoProgressError(loop_reason(len(self.expansions), self.world))
+            raise NoProgressError(loop_reason(len(self.expansions), self.skills))
         self._last_state = after
         return report
 
@@ -289,8 +300,8 @@ class BlendedLoop:
             from btplan.planner.backjump import enclosing_choices
 
             self.culprits = list(dict.fromkeys(c for n in stuck for c in enclosing_choices(n)))
-            raise NoAchieverError(no_achiever_reason(missing, self.index, self.circular, len(self.expansions),
-                                                     self.world))
+            raise NoAchieverError(no_achiever_reason(missing, self.index, self.circular,
+                                                     len(self.expansions), self.skills))
         return None
 
     def most_expanded(self, count: int = 3) -> str:

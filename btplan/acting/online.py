@@ -1,48 +1,52 @@
 """One acting run: a world, its external agents, the blended loop, and a record per tick.
 
 This is what `btplan run` and `btplan.run` do: Algorithm 1 online, with agents
-changing the world between ticks. It only observes the loop (a tick recorder on the
-tree, the world's action logs, the facts before and after), so a run with a trace
-behaves exactly like one without.
+changing the world between ticks, at a fixed rate if asked, for as long as asked. It
+only observes the loop (a tick recorder on the tree, the loop's skill events, the facts
+before and after), so a run with a trace behaves exactly like one without.
+
+Every way out of a run (the goal, the tick limit, a stop request, a planning error, an
+exception from the world, KeyboardInterrupt, SIGTERM) halts every running skill and
+waits a bounded time for them (btplan.acting.skills); skills that did not stop are
+named in the outcome.
 """
 
 from __future__ import annotations
 
-import time
-from collections.abc import Callable, Mapping, Sequence
+from collections import deque
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from typing import Any
 
-from btplan.acting.loop import BlendedLoop, Expansion, TickReport
-from btplan.acting.records import ExpansionNote, RunSummary, TickRecord, summarize
-from btplan.bt import FAILURE, BehaviorTree, Node, Status
-from btplan.bt.trace import TickRecorder
-from btplan.errors import PlanningError
-from btplan.model import Atom, GroundAction, Task
+from btplan.acting.clock import Clock
+from btplan.acting.config import ACTING_PLANNER, ActingConfig
+from btplan.acting.loop import BlendedLoop
+from btplan.acting.pacing import Pacer, Stop
+from btplan.acting.recorder import Recorder, TickView
+from btplan.acting.records import RunSummary, TickRecord
+from btplan.bt import SUCCESS, BehaviorTree
+from btplan.errors import PlanningError, SkillError
+from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex, PlannerOptions
-from btplan.records import field, record
-from btplan.worlds.agents import Agent, act_all, agents_from_specs, check_world
+from btplan.records import field, record, replace
+from btplan.worlds.agents import Agent, agents_from_specs, check_world
 from btplan.worlds.disturb import DisturbSpec, check_specs, parse_spec
 from btplan.worlds.symbolic import SymbolicWorld
 
-TickView = Callable[[Node, Mapping[int, Status], TickRecord], None]
-"""Called after every tick with the tree, id(node) -> status for the nodes this tick
-reached, and the tick's record: the live view is one."""
+__all__ = ["ACTING_OPTIONS", "RECENT_TICKS", "RunOutcome", "TickView", "run", "run_task",
+           "task_models"]
 
-_LOGS = ("started", "halted", "executed", "failed")
+ACTING_OPTIONS = ACTING_PLANNER
+"""The planner's options while acting (btplan.acting.config.ACTING_PLANNER)."""
 
-ACTING_OPTIONS = PlannerOptions(closest_first=False)
-"""The planner's defaults while acting, less nearest-first expansion.
-
-Breadth-first choice of the condition to expand (the paper's Algorithm 3) grows the
-shallow alternatives of a Fallback before the deep ones, so an agent that undoes an
-action often finds the other way to redo it already in the tree: no new expansion, as
-Problem 1 asks. Nearest-first reaches a long plan in far fewer expansions, which is what
-offline planning (`plan`) needs, but it leaves those alternatives unexpanded."""
+RECENT_TICKS = 10_000
+"""Tick records an outcome keeps (the last ones); the summary counts every tick and
+the trace streams every record, so a long run's memory stays flat."""
 
 
 @record(slots=True)
 class RunOutcome:
-    """How a run ended, and everything that happened on the way (one record per tick)."""
+    """How a run ended, its summary, and the records of its last RECENT_TICKS ticks."""
 
     reached: bool
     reason: str
@@ -51,19 +55,22 @@ class RunOutcome:
     records: list[TickRecord] = field(default_factory=list)
     interrupted: bool = False
     halted_on_stop: tuple[str, ...] = ()
-    """The actions that were running when the run was interrupted, and were halted."""
+    """The actions that were running when the run ended, and were halted then."""
+    executed: list[GroundAction] = field(default_factory=list)
+    """The grounded actions the robot completed, in order (what `--plan-out` writes)."""
+    totals: RunSummary = field(default_factory=RunSummary)
 
     @property
     def ticks(self) -> int:
-        return len(self.records)
+        return self.totals.ticks
 
     @property
-    def executed(self) -> list[GroundAction]:
-        """The grounded actions the robot completed, in order (what `--plan-out` writes)."""
-        return list(self.world.executed)
+    def unstopped(self) -> list[str]:
+        """Skills that did not report stopping within the wait after they were halted."""
+        return self.totals.unstopped
 
     def summary(self) -> RunSummary:
-        return summarize(self.records)
+        return self.totals
 
     def plan_text(self) -> str:
         """The executed actions in the IPC plan format, one per line."""
@@ -84,84 +91,40 @@ def task_models(task: Task, options: PlannerOptions | None = None) -> AchieverIn
     return models
 
 
-class _Observer:
-    """Turns what the loop and the world did around one tick into a TickRecord."""
+def default_config(world: object | None) -> ActingConfig:
+    """The preset for a world: `simulator` for one that refines values as it runs
+    (it declares `continuous`), `default` otherwise."""
+    from btplan.robot.contract import capabilities_of
 
-    def __init__(self, world: Any, agents: Sequence[Agent], tree: BehaviorTree,
-                 view: TickView | None, rate: float | None,
-                 stop: Callable[[], bool] | None = None) -> None:
-        self.world, self.agents, self.tree, self.view = world, list(agents), tree, view
-        self.stop = stop
-        self.period = 1.0 / rate if rate else 0.0
-        self.recorder = TickRecorder()
-        self.recorder.attach(tree)
-        self.records: list[TickRecord] = []
-        self._facts: frozenset[Atom] = world.facts()
-        self._marks: dict[str, int] = {}
-        self._ids: dict[str, Node] = {}
-        self._disturbances: list[Any] = []
-        self._next = time.monotonic()
-
-    def before(self, tick: int) -> None:
-        """Pace the run, let the agents act, and remember where the logs stood."""
-        if self.period:
-            # in short naps, so that a stop request does not wait for a slow rate
-            while (delay := self._next - time.monotonic()) > 0:
-                if self.stop is not None and self.stop():
-                    break
-                time.sleep(min(delay, 0.05))
-            self._next = max(self._next, time.monotonic()) + self.period
-        if self.stop is not None and self.stop():
-            raise _Stop
-        self._marks = {name: len(getattr(self.world, name)) for name in _LOGS}
-        self._disturbances = act_all(self.agents, self.world, tick)
-        self._ids = {f"n{i}": node for i, node in enumerate(self.tree.nodes())}
-
-    def after(self, report: TickReport) -> None:
-        traces = list(self.recorder.traces)
-        self.recorder.traces.clear()
-        nodes = traces[-1].nodes if traces else ()
-        if len(traces) > 1:  # the tree grew and was ticked again within this tick
-            self._ids = {f"n{i}": node for i, node in enumerate(self.tree.nodes())}
-        reached = {id(self._ids[n.id]): n.status for n in nodes if n.id in self._ids}
-        facts = self.world.facts()
-        record = TickRecord(
-            tick=report.tick,
-            status=report.status.value,
-            nodes=nodes,
-            started=self._since("started"),
-            halted=self._since("halted"),
-            finished=self._since("executed"),
-            failed=self._since("failed"),
-            disturbances=tuple(self._disturbances),
-            expansions=tuple(note(e) for e in report.expansions),
-            added=tuple(str(a) for a in sorted(facts - self._facts)),
-            removed=tuple(str(a) for a in sorted(self._facts - facts)),
-            planning_seconds=report.planning_seconds,
-            checks=sum(1 for t in traces for n in t.nodes if n.kind == "Condition")
-            + report.checks_ahead,
-        )
-        self._facts = facts
-        self.records.append(record)
-        if self.view is not None:
-            self.view(self.tree.root, reached, record)
-
-    def _since(self, log: str) -> tuple[str, ...]:
-        return tuple(str(a) for a in getattr(self.world, log)[self._marks.get(log, 0):])
+    simulated = world is not None and capabilities_of(world).continuous
+    return ActingConfig.simulator() if simulated else ActingConfig.default()
 
 
-class _Stop(Exception):
-    """Raised between ticks when the caller asks the run to stop."""
+class Terminated(BaseException):
+    """SIGTERM arrived during a run started outside btplan's CLI: halt, then exit."""
 
 
-def note(expansion: Expansion) -> ExpansionNote:
-    """An expansion as the trace shows it: the condition, its achievers, the moves made."""
-    return ExpansionNote(
-        condition=str(expansion.condition),
-        achievers=tuple(str(a) for a in expansion.achievers),
-        conflicts_resolved=int(expansion.conflicts_resolved),
-        moves=int(expansion.moves),
-    )
+@contextmanager
+def _terminate_cleanly() -> Iterator[None]:
+    """In the main thread, with SIGTERM left at its default (which kills the process at
+    once), turn it into Terminated for the duration of the run, so that skills are
+    halted first. A program that handles SIGTERM itself keeps its own handler."""
+    import signal
+    import threading
+
+    if (threading.current_thread() is not threading.main_thread()
+            or signal.getsignal(signal.SIGTERM) is not signal.SIG_DFL):
+        yield
+        return
+
+    def handle(signum: int, frame: object) -> None:
+        raise Terminated
+
+    signal.signal(signal.SIGTERM, handle)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
 def run_task(
@@ -169,108 +132,150 @@ def run_task(
     *,
     world: Any | None = None,
     agents: Sequence[Agent] = (),
+    config: ActingConfig | None = None,
     seed: int = 0,
-    max_ticks: int = 1000,
-    view: TickView | None = None,
+    max_ticks: int | None = 1000,
     rate: float | None = None,
-    failure_probability: Mapping[str, float] | None = None,
-    options: PlannerOptions | None = None,
+    keep: bool = False,
+    view: TickView | None = None,
     stop: Callable[[], bool] | None = None,
-    look_ahead: bool = False,
+    clock: Clock | None = None,
     models: AchieverIndex | None = None,
-    scope_moves: bool = False,
-    goal_credit: bool = False,
-    finish_first: bool = False,
-    look_deeper: bool = False,
 ) -> RunOutcome:
     """Plan and act at once (Algorithm 1) in `world`, with `agents` acting before each tick.
 
     Without a world, the symbolic one is used, seeded with `seed`. The loop never
-    rebuilds the tree: it only grows on FAILURE, as the paper's Problem 1 asks.
-    `stop` is asked before every tick; when it says yes, the tree is halted (the
-    world stops what the robot was doing) and the outcome is marked interrupted.
+    rebuilds the tree: it only grows on FAILURE, as the paper's Problem 1 asks. See
+    `run` for the arguments.
     """
     if world is None:
-        world = SymbolicWorld(task, seed=seed, failure_probability=failure_probability)
-    loop = BlendedLoop(task, world, options or ACTING_OPTIONS, like=models,
-                       look_ahead=look_ahead, scope_moves=scope_moves,
-                       goal_credit=goal_credit, finish_first=finish_first,
-                       look_deeper=look_deeper)
-    observer = _Observer(world, agents, loop.tree, view, rate, stop)
-    interrupted = False
-    halted_on_stop: tuple[str, ...] = ()
+        world = SymbolicWorld(task, seed=seed)
+    config = config or default_config(world)
+    limit = max_ticks if max_ticks is not None else 0
+    options = replace(config.loop_planner, stall_limit=config.stall_limit(limit or 2**62))
+    loop = BlendedLoop(task, world, options, like=models, config=config)
+    pacer = Pacer(rate, clock, stop)
+    recorder = Recorder(loop, world, agents, view, deque(maxlen=RECENT_TICKS))
+    reached, reason, interrupted, raised = False, "", False, None
     try:
-        outcome = loop.run(max_ticks, before_tick=observer.before, on_tick=observer.after)
-        reached, reason = outcome.reached, outcome.reason
-    except _Stop:
-        reached, reason, interrupted = False, "interrupted", True
-        mark = len(world.halted) if hasattr(world, "halted") else 0
-        loop.tree.halt(world)
-        halted_on_stop = tuple(str(a) for a in getattr(world, "halted", [])[mark:])
-    except PlanningError as error:
-        # The tree cannot grow any further (no achiever, going round in circles): the run
-        # ends as not reached, and its records, this last tick included, tell why.
-        reached, reason = False, error.reason
-        if not observer.records or observer.records[-1].tick != loop.ticks:
-            observer.after(TickReport(loop.ticks, FAILURE))
+        with _terminate_cleanly():
+            try:
+                reached, reason = _drive(loop, pacer, recorder, max_ticks, keep)
+            except Stop:
+                reason, interrupted = "interrupted", True
+            except (PlanningError, SkillError) as error:
+                # The tree cannot grow any further (no achiever, going round in circles),
+                # or a skill raised and the run stops on it: the run ends as not reached,
+                # and its records, this last tick included, tell why.
+                reason = error.reason if isinstance(error, PlanningError) else str(error)
+                recorder.close_tick()
+            except BaseException as error:  # KeyboardInterrupt, SIGTERM, a world's bug
+                raised = error
+            finally:
+                halted, unstopped = _halt_everything(loop, config, clock)
     finally:
-        observer.recorder.detach(loop.tree)
+        recorder.detach()
+    recorder.summary.unstopped.extend(unstopped)
+    recorder.summary.overruns, recorder.summary.worst_lateness = (pacer.overruns,
+                                                                   pacer.worst_lateness)
+    if raised is not None:
+        if isinstance(raised, Terminated):
+            raise SystemExit(143) from None
+        raise raised
     return RunOutcome(reached=reached, reason=reason, tree=loop.tree, world=world,
-                      records=observer.records, interrupted=interrupted,
-                      halted_on_stop=halted_on_stop)
+                      records=list(recorder.kept), interrupted=interrupted,
+                      halted_on_stop=halted, executed=list(loop.skills.executed),
+                      totals=recorder.summary)
+
+
+def _drive(loop: BlendedLoop, pacer: Pacer, recorder: Recorder, max_ticks: int | None,
+           keep: bool) -> tuple[bool, str]:
+    """Tick until the goal is reached (with `keep`, on until the limit), or the limit.
+
+    The goal is checked in the world after the tick: when actions finish within the
+    tick they start in, later work may undo a goal checked earlier in the same tick,
+    and the next tick must then put it right.
+    """
+    ticks = 0
+    held = False
+    while max_ticks is None or ticks < max_ticks:
+        pacer.wait()
+        recorder.before(loop.ticks + 1)
+        report = loop.tick()
+        ticks += 1
+        now = report.status is SUCCESS and loop.goal_holds()
+        goal = "reached" if now and not held else "lost" if held and not now else ""
+        held = now
+        recorder.after(report, goal)
+        if now and not keep:
+            return True, "goal reached"
+    if keep and held:
+        return True, f"the goal held at the last of {ticks} ticks"
+    return False, f"the goal was not reached within {ticks} ticks"
+
+
+def _halt_everything(loop: BlendedLoop, config: ActingConfig,
+                     clock: Clock | None) -> tuple[tuple[str, ...], list[str]]:
+    """Halt the tree and every running skill; the names of those halted, and of those
+    that did not stop within the wait."""
+    try:
+        loop.tree.halt(loop.skills)
+    except Exception:  # noqa: BLE001 (a node's halt failed: the skills are halted below)
+        pass
+    unstopped = loop.skills.halt_all(config.halt_wait, clock)
+    events = loop.skills.take_events()
+    halted = tuple(str(a) for a in (*events.halted, *events.observed))
+    return halted, unstopped
 
 
 def run(
     task: Task,
     *,
+    world: Any | None = None,
+    config: ActingConfig | None = None,
     disturb: Sequence[str | DisturbSpec] = (),
     agents: Sequence[Agent] = (),
-    world: Any | None = None,
     seed: int = 0,
-    max_ticks: int = 1000,
-    view: TickView | None = None,
+    max_ticks: int | None = 1000,
     rate: float | None = None,
-    failure_probability: Mapping[str, float] | None = None,
-    options: PlannerOptions | None = None,
+    keep: bool = False,
+    view: TickView | None = None,
     stop: Callable[[], bool] | None = None,
-    world_name: str = "this world",
-    look_ahead: bool = False,
+    clock: Clock | None = None,
     models: AchieverIndex | None = None,
-    scope_moves: bool = False,
-    goal_credit: bool = False,
-    finish_first: bool = False,
-    look_deeper: bool = False,
+    world_name: str = "this world",
 ) -> RunOutcome:
-    """Run `task` in a world with disturbances: the library form of `btplan run`.
+    """Plan and act in a world (the library form of `btplan run`); docs/robot.md.
 
-    `disturb` holds specs such as `"undo@5"` or `"set:blocked(tau_goal)@p=0.05"`
-    (syntax in docs/cli.md), checked against the task first; `agents` are any other
-    agents (a simulator's scripted events). Returns the outcome with one record per
-    tick; raises InputError for a bad spec. `options` are the planner's
-    (`PlannerOptions.paper()` for the published algorithms); `stop` is asked before
-    each tick whether to end the run there (see `run_task`); `world_name` is how
-    messages call the world ("the PyBullet world"); `look_ahead` expands the later
-    false preconditions of an action with the first (btplan.acting.ahead), and a
-    condition ahead of the running action as soon as an agent breaks it
-    (btplan.acting.watch); `scope_moves`
-    skips a subtree moved out of an achiever while that achiever's condition holds
-    (btplan.acting.scope); `goal_credit` ranks first the achievers that make other
-    goals true and sets up the step of another goal an achiever enables
-    (btplan.acting.credit, btplan.acting.prepare); `finish_first` finishes a halted
-    action that does not interfere with the one started instead (btplan.acting.finish);
-    `look_deeper`, without `look_ahead`, expands a later false precondition early only
-    when its achiever needs something that would make the robot give up what it is
-    about to hold (btplan.acting.ahead); `models`
-    are the task's models built beforehand (`task_models`), so that their cost can
-    be told apart from the expansions'.
+    - `world`: any object with the calls of btplan.robot.World (a `btplan.robot.Robot`,
+      the PyBullet world, your own); by default the symbolic world, seeded with `seed`.
+    - `config`: an ActingConfig (`ActingConfig.paper()` for Algorithm 1 as published);
+      by default `default`, or `simulator` for a world that declares `continuous`.
+    - `disturb`: specs such as `"undo@5"` or `"set:blocked(tau_goal)@p=0.05"` (syntax in
+      docs/cli.md), checked against the task first; `agents`: any other agents (a
+      simulator's scripted events), acting before each tick.
+    - `max_ticks`: the tick limit (None: none); `rate`: ticks per second on `clock`
+      (the system's monotonic clock by default; tests pass a FakeClock); `keep`: tick
+      on after the goal is reached, as Algorithm 1 does, so that a goal undone is
+      achieved again, until the limit or a stop.
+    - `view`: called after every tick with the tree, the statuses and the tick's record;
+      `stop`: asked before every tick (and while waiting) whether to end the run there.
+    - `models`: the task's models built beforehand (`task_models`), so that their cost
+      can be told apart from the expansions'; `world_name`: how messages name the world.
+
+    Returns the outcome (its summary counts every tick); raises InputError for a bad
+    spec. KeyboardInterrupt and SIGTERM halt every running skill before they end the
+    program.
     """
     specs = [parse_spec(s) if isinstance(s, str) else s for s in disturb]
     check_specs(specs, task)
     if world is not None:
         check_world(specs, world, world_name)
+        bind = getattr(world, "bind", None)  # a btplan.robot.Robot checks itself
+        if callable(bind):
+            bind(task)
     everyone = [*agents_from_specs(specs, seed), *agents]
-    return run_task(task, world=world, agents=everyone, seed=seed, max_ticks=max_ticks,
-                    view=view, rate=rate, failure_probability=failure_probability,
-                    options=options, stop=stop, look_ahead=look_ahead, models=models,
-                    scope_moves=scope_moves, goal_credit=goal_credit,
-                    finish_first=finish_first, look_deeper=look_deeper)
+    return run_task(task, world=world, agents=everyone, config=config, seed=seed,
+                    max_ticks=max_ticks, rate=rate, keep=keep, view=view, stop=stop,
+                    clock=clock, models=models)
+

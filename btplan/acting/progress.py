@@ -9,12 +9,17 @@ driving past a cube), states are compared only on ticks where an action ended: p
 by the same place twice within one action is not a loop, and a loop of actions still
 repeats its states there. A world that learns from a failed action (the PyBullet arm
 remembers the sides of a cube it failed to grasp from, and tries another) counts what it
-learned in `lessons`: a state seen before a new lesson is not a loop yet.
+learned in `lessons`: a state seen before a new lesson is not a loop yet. Each of these
+is a capability the world declares (btplan.robot.Capabilities).
 """
 
 from __future__ import annotations
 
 from btplan.model import Atom
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from btplan.acting.skills import Skills
 
 
 class Circles:
@@ -29,26 +34,23 @@ class Circles:
         """A repeated state is no longer a loop (an outside change, another world)."""
         self._seen.clear()
 
-    def repeated(self, world: object, before: frozenset[Atom], after: frozenset[Atom],
+    def repeated(self, skills: Skills, before: frozenset[Atom], after: frozenset[Atom],
                  expansions: int) -> bool:
         """Record the state after a tick; True when the loop was in it before."""
-        outside = int(getattr(world, "outside_changes", 0))
+        declared, world = skills.capabilities, skills.world
+        outside = int(world.outside_changes) if declared.outside_changes else 0  # type: ignore[attr-defined]
         if outside != self._outside:
             # Someone else acted while the tree ticked: a repeated state is no longer a loop.
             self._outside = outside
             self._seen.clear()
-        ended = _actions_ended(world)
-        boundary = ended != self._ended or not getattr(world, "continuous", False)
+        ended = skills.ended
+        boundary = ended != self._ended or not declared.continuous
         self._ended = ended
         if after == before or not boundary:
             return False
-        key = (after, expansions, int(getattr(world, "lessons", 0)))
+        key = (after, expansions, int(world.lessons) if declared.lessons else 0)  # type: ignore[attr-defined]
         if key in self._seen:
             return True
         self._seen.add(key)
         return False
 
-
-def _actions_ended(world: object) -> int:
-    """How many actions the world has seen end (done, failed or halted), where it logs them."""
-    return sum(len(getattr(world, log, ())) for log in ("executed", "failed", "halted"))

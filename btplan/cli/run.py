@@ -6,6 +6,7 @@ import importlib
 import sys
 import time
 from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from enum import Enum
 from pathlib import Path
 from types import TracebackType
@@ -40,7 +41,9 @@ EXAMPLES = """Examples:
 
   btplan run domains/pick_place.bt --disturb undo:Pick@11 --rate 4
   btplan run domains/pick_place_obstacle.bt --scenario examples/example2.dist
-  btplan run domains/pick_place_obstacle.bt --scenario examples/example2.dist --extended
+  btplan run domains/pick_place_obstacle.bt --scenario examples/example2.dist --paper
+  btplan run domains/pick_place.bt --world examples/my_robot.py:FetchRobot --hz 10
+  btplan run domains/pick_place.bt --keep --disturb 'undo:Place@p=0.05' --max-ticks 500
   btplan run domains/youbot.bt --sim pybullet -q --trace run.jsonl --plan-out p.plan
   btplan run domains/pick_place.bt --plan-out - | wc -l
 """
@@ -65,8 +68,10 @@ def run(
              "(.toml file, or the name of a shipped scene).")] = None,
     seed: Annotated[int, typer.Option(
         "--seed", metavar="N", help="Seed of every random choice in the run.")] = 0,
-    max_ticks: Annotated[int, typer.Option(
-        "--max-ticks", min=1, metavar="N", help="Give up after N ticks (exit 1).")] = 1000,
+    max_ticks: Annotated[int | None, typer.Option(
+        "--max-ticks", min=1, metavar="N",
+        help="Give up after N ticks (exit 1). Default 1000, or no limit with --keep.",
+        show_default=False)] = None,
     timeout: Annotated[float | None, typer.Option(
         "--timeout", metavar="SECONDS", help="Give up after SECONDS seconds (exit 1).",
         show_default=False)] = None,
@@ -79,18 +84,30 @@ def run(
     plan_out: Annotated[str | None, typer.Option(
         "--plan-out", metavar="FILE",
         help="Write the executed actions in IPC plan format ('-': standard output).")] = None,
-    rate: Annotated[float | None, typer.Option(
-        "--rate", min=0.01, metavar="HZ",
-        help="Ticks per second, to watch (default: as fast as possible).")] = None,
+    hz: Annotated[float | None, typer.Option(
+        "--hz", "--rate", min=0.01, metavar="HZ",
+        help="Tick at this fixed rate on the wall clock, as a robot's tree does (default: "
+             "as fast as possible). Skills are polled, never waited for; ticks that start "
+             "late are counted in the summary.")] = None,
+    keep: Annotated[bool, typer.Option(
+        "--keep",
+        help="Keep ticking after the goal is reached, as Algorithm 1 does: a goal an agent "
+             "undoes is achieved again. Runs until Ctrl-C, --timeout or --max-ticks "
+             "(no tick limit unless given).")] = False,
     quiet: Annotated[bool, typer.Option(
         "-q", "--quiet", help="No live view and no progress; the summary only.")] = False,
-    extended: Annotated[bool, typer.Option(
-        "--extended",
-        help="Act as `btplan sweep --method btplan` measures it (docs/reactivity.md): up to "
-             "64 expansions per tick, look-ahead, scoped moves, goal credit, a halted "
-             "action finished first, a failing action retried until --max-ticks. Without "
-             "it, the loop of Algorithm 1, one expansion per tick.")
-    ] = False,
+    paper: Annotated[bool, typer.Option(
+        "--paper",
+        help="Algorithm 1 exactly as published: one expansion per tick, first-match "
+             "achievers, no departure, and the run ends after a few failing ticks. Without "
+             "it, the default preset (docs/robot.md): the tree grows within the tick until "
+             "it runs, a failing skill is retried, and the departures measured in "
+             "docs/reactivity.md act.")] = False,
+    world_spec: Annotated[str | None, typer.Option(
+        "--world", metavar="FILE.py:CLASS",
+        help="Act in your own robot: a class (or factory) in a Python file or module, "
+             "e.g. my_robot.py:Robot or my_package.robot:Robot, called with the task "
+             "(see docs/robot.md).", show_default=False)] = None,
     gui: Annotated[bool, typer.Option(
         "--gui", help="Open the PyBullet window (--sim pybullet).")] = False,
     record: Annotated[str | None, typer.Option(
@@ -112,6 +129,8 @@ def run(
 
     if timeout is not None and timeout <= 0:
         raise InputError(f"--timeout must be positive, got {timeout:g}")
+    if max_ticks is None:
+        max_ticks = None if keep else 1000
     check_outputs(Output("--trace", trace), Output("--plan-out", plan_out),
                   Output("--record", record))
     task = acting.load(resolve(domain), *([problem] if problem is not None else []))
@@ -123,19 +142,32 @@ def run(
         else:
             specs.extend(parse_scenario(read_text(scenario), scenario))
     with Interrupts() as interrupted:  # a signal while the world opens stops before tick 1
-        world, scene_agents = open_world(task, sim, scene, seed, gui, record,
-                                         probabilities(fail_prob))
+        if world_spec is not None:
+            from btplan.cli.user_world import open_user_world
+
+            if sim is not Sim.symbolic or gui or record or fail_prob:
+                raise InputError("--world cannot be combined with --sim, --gui, --record "
+                                 "or --fail-prob", Span("--world", 1, 1))
+            world, scene_agents = open_user_world(world_spec, task), []
+        else:
+            world, scene_agents = open_world(task, sim, scene, seed, gui, record,
+                                             probabilities(fail_prob))
         deadline = None if timeout is None else time.monotonic() + timeout
 
         def stop() -> bool:
             return interrupted() or (deadline is not None and time.monotonic() > deadline)
 
         try:
-            with RunFiles(trace, plan_out, world) as files:
-                result = _act(task, world, specs, scene_agents, seed, max_ticks, rate, quiet,
-                              files.add, stop, WORLD_NAMES[sim], extended, sim is not Sim.symbolic)
+            with RunFiles(trace, plan_out) as files:
+                settings = Acting(seed=seed, max_ticks=max_ticks, rate=hz, keep=keep,
+                                  paper=paper, quiet=quiet,
+                                  world_name=WORLD_NAMES[sim] if world_spec is None
+                                  else world_spec)
+                result = _act(task, world, specs, scene_agents, settings, files.add, stop)
         finally:
-            if hasattr(world, "close"):
+            from btplan.robot.contract import capabilities_of
+
+            if capabilities_of(world).closes:
                 world.close()  # closes a recording into a playable file, interrupted or not
     if result.interrupted and not interrupted():
         result.reason = f"the time budget ({timeout:g} s) ran out"
@@ -158,10 +190,10 @@ class RunFiles:
     whenever an action finishes (on standard output, the new actions are appended).
     """
 
-    def __init__(self, trace: str | None, plan_out: str | None, world: Any) -> None:
+    def __init__(self, trace: str | None, plan_out: str | None) -> None:
         self.trace = LineStream(trace) if trace is not None else None
-        self.plan_out, self.world = plan_out, world
-        self._done = 0
+        self.plan_out = plan_out
+        self._lines: list[str] = []
 
     def __enter__(self) -> Self:
         if self.trace is not None:
@@ -178,32 +210,42 @@ class RunFiles:
     def add(self, record: TickRecord) -> None:
         """The plan first, then the trace: an action the trace shows finished is in the
         plan file, even when the run is killed between the two writes."""
-        self._write_plan()
+        self._write_plan(record.plan_lines)
         if self.trace is not None:
             self.trace.write_line(record.to_json())
 
-    def _write_plan(self) -> None:
-        executed = list(self.world.executed)
-        if self.plan_out is None or len(executed) == self._done:
+    def _write_plan(self, new: tuple[str, ...]) -> None:
+        if self.plan_out is None or not new:
             return
+        self._lines.extend(line + "\n" for line in new)
         if self.plan_out == STDIO:
-            sys.stdout.write("".join(a.ipc() + "\n" for a in executed[self._done:]))
+            sys.stdout.write("".join(line + "\n" for line in new))
             sys.stdout.flush()
         else:
-            write_atomic(self.plan_out, "".join(a.ipc() + "\n" for a in executed))
-        self._done = len(executed)
+            write_atomic(self.plan_out, "".join(self._lines))
 
 
-def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Agent], seed: int,
-         max_ticks: int, rate: float | None, quiet: bool, keep: Callable[[TickRecord], None],
-         stop: Callable[[], bool], world_name: str, extended: bool, simulated: bool
+@dataclass(frozen=True)
+class Acting:
+    """The run's settings from the command line, as `_act` passes them on."""
+
+    seed: int
+    max_ticks: int | None
+    rate: float | None
+    keep: bool
+    paper: bool
+    quiet: bool
+    world_name: str
+
+
+def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Agent],
+         settings: Acting, keep: Callable[[TickRecord], None], stop: Callable[[], bool]
          ) -> acting.RunOutcome:
     """Act, with the live view on a terminal, progress lines in a pipe, or nothing (-q)."""
     from btplan import acting
-    from btplan.acting.extended import NONE, extended_options, extensions
+    from btplan.acting.config import ActingConfig
 
-    options = extended_options(stall_limit=max_ticks) if extended else None
-    settings = extensions(simulated) if extended else NONE
+    config = ActingConfig.paper() if settings.paper else None  # None: the world's default
 
     def run_with(view: Callable[[Node, Mapping[int, Status], TickRecord], None] | None
                  ) -> acting.RunOutcome:
@@ -212,11 +254,12 @@ def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Ag
             if view is not None:
                 view(root, reached, record)
 
-        return acting.run(task, disturb=specs, agents=scene_agents, world=world, seed=seed,
-                          max_ticks=max_ticks, view=each, rate=rate, stop=stop,
-                          world_name=world_name, options=options, **settings)
+        return acting.run(task, disturb=specs, agents=scene_agents, world=world,
+                          seed=settings.seed, max_ticks=settings.max_ticks, view=each,
+                          rate=settings.rate, keep=settings.keep, stop=stop,
+                          world_name=settings.world_name, config=config)
 
-    if quiet:
+    if settings.quiet:
         return run_with(None)
     if stderr.is_terminal:
         from btplan.acting.live_view import LiveView
@@ -298,13 +341,35 @@ def summary_table(result: acting.RunOutcome) -> Table:
     grown = ", ".join(f"{e.condition} @{tick}" for tick, e in total.expansions)
     table.add_row("expansions", f"{len(total.expansions)}" + (f" ({escape(grown)})" if grown else ""))
     table.add_row("conflicts resolved", str(total.conflicts_resolved))
-    table.add_row("executed", _listing(total.finished))
-    table.add_row("halted", _listing(total.halted + list(result.halted_on_stop)))
-    table.add_row("failed", _listing(total.failed))
+    table.add_row("executed", _listing(total.finished, total.count("finished")))
+    if total.observed:
+        table.add_row("  effects observed", _listing(total.observed, total.count("observed")))
+    table.add_row("halted", _listing(total.halted, total.count("halted")))
+    if result.halted_on_stop:
+        table.add_row("halted at the end", _listing(list(result.halted_on_stop)))
+    if total.unstopped:
+        table.add_row("[red]did not stop[/]", _listing(total.unstopped))
+    table.add_row("failed", _listing(total.failed, total.count("failed")))
+    if total.errors:
+        table.add_row("skill errors", _listing([f"{what}: {why}" for what, why in total.errors],
+                                               total.count("errors")))
     table.add_row("disturbances",
-                  _listing([f"@{d.tick} {d.description}" for d in total.disturbances]))
+                  _listing([f"@{d.tick} {d.description}" for d in total.disturbances],
+                           total.count("disturbances")))
+    if total.goal_reached and (len(total.goal_reached) > 1 or total.goal_lost):
+        table.add_row("goal reached at", ", ".join(f"@{t}" for t in total.goal_reached))
+        table.add_row("goal lost at", ", ".join(f"@{t}" for t in total.goal_lost) or "never")
+    if total.overruns:
+        table.add_row("late ticks", f"{total.overruns} (worst {total.worst_lateness * 1000:.1f} ms)")
     return table
 
 
-def _listing(items: list[str]) -> str:
-    return f"{len(items)}" + (f": {escape(', '.join(items))}" if items else "")
+LISTED = 40
+"""Names a summary row lists before it only counts."""
+
+
+def _listing(items: list[str], count: int | None = None) -> str:
+    total = len(items) if count is None else count
+    shown = items[:LISTED]
+    more = f", ... {total - len(shown)} more" if total > len(shown) else ""
+    return f"{total}" + (f": {escape(', '.join(shown))}{more}" if shown else "")

@@ -15,10 +15,9 @@ from typing import Any
 
 from btplan import acting
 from btplan.acting.baselines import BASELINES, run_baseline
-from btplan.acting.extended import NONE, extended_options, extensions
+from btplan.acting.config import ActingConfig
 from btplan.errors import BtplanError, InputError, Span
 from btplan.model import Task
-from btplan.planner import PlannerOptions
 from btplan.sweep.scenarios import Scenario, resolve
 
 METHODS = ("btplan", "btplan-paper", *BASELINES)
@@ -119,27 +118,30 @@ def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: s
                     "setup_seconds": out.setup_seconds,
                     "checks": out.checks / max(out.ticks, 1),
                     "disturbances": out.disturbances, "reason": out.reason}
-        if method == "btplan-paper":
-            options, settings = PlannerOptions.paper(stall_limit=max_ticks), NONE
-        else:
-            options = extended_options(stall_limit=max_ticks)
-            settings = extensions(simulated=job.sim != "symbolic")
+        config = method_config(method, job.sim)
         started = time.process_time()
-        models = acting.task_models(task, options)
+        models = acting.task_models(task, config.planner)
         setup = time.process_time() - started
         outcome = acting.run(task, agents=agents, world=world, seed=seed,
-                             max_ticks=max_ticks, options=options, models=models,
-                             **settings)
+                             max_ticks=max_ticks, config=config, models=models)
     finally:
         if hasattr(world, "close"):
             world.close()
-    records = outcome.records
-    checks = sum(r.checks for r in records)
+    totals = outcome.summary()
     return {"success": outcome.reached, "ticks": outcome.ticks,
             "actions": len(outcome.executed),
-            "planner_calls": sum(len(r.expansions) for r in records),
-            "planning_seconds": sum(r.planning_seconds for r in records),
+            "planner_calls": totals.count("expansions"),
+            "planning_seconds": totals.planning_seconds,
             "setup_seconds": setup,
-            "checks": checks / max(outcome.ticks, 1),
-            "disturbances": sum(len(r.disturbances) for r in records),
+            "checks": totals.checks / max(outcome.ticks, 1),
+            "disturbances": totals.count("disturbances"),
             "reason": outcome.reason}
+
+
+def method_config(method: str, sim: str) -> ActingConfig:
+    """How btplan acts as `method`: `btplan-paper` is Algorithm 1 as published, `btplan`
+    the preset `btplan run` uses in that world. Every method retries a failing action
+    until the tick limit: the sweep gives each its whole budget."""
+    if method == "btplan-paper":
+        return ActingConfig.paper(retry_failed_actions=True)
+    return ActingConfig.default() if sim == "symbolic" else ActingConfig.simulator()

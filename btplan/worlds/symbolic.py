@@ -25,6 +25,8 @@ from btplan.model import (
     Task,
     matches,
 )
+from btplan.robot.contract import Capabilities
+from btplan.robot.refine import ConstraintRefiner, holds
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -35,8 +37,11 @@ class SymbolicWorld:
     """The current state as a set of atoms, plus the bookkeeping of the robot's actions.
 
     `executed` lists the actions the robot completed, in order; `started`, `halted`
-    and `failed` record the rest of each action's life, for tests and traces.
+    and `failed` record the rest of each action's life, for its agents (an agent that
+    undoes the last action started) and for tests; the acting loop keeps its own logs.
     """
+
+    capabilities = Capabilities(refines=True)
 
     def __init__(
         self,
@@ -57,8 +62,7 @@ class SymbolicWorld:
         # Worlds of one task may share their groundings (offline planning starts many).
         self._grounded: dict[LeafKey, GroundAction] = groundings if groundings is not None else {}
         self._remaining: dict[LeafKey, int] = {}
-        self._objects: dict[str, tuple[str, ...]] = {}
-        self._goal_names: frozenset[str] | None = None
+        self._refiner = ConstraintRefiner(task, lambda: self._state)
         self._fail_next: list[tuple[str, tuple[str, ...] | None]] = []
         self.executed: list[GroundAction] = []
         self.started: list[GroundAction] = []
@@ -183,36 +187,9 @@ class SymbolicWorld:
     def refine(
         self, template: ActionTemplate, binding: Mapping[str, str], parameter: Parameter
     ) -> list[str]:
-        """Objects of the parameter's type that satisfy the template's `where` constraints.
-
-        Constraints that mention other, still unbound parameters do not filter here;
-        the planner checks them once those are bound. A value the goal names (the goal
-        region) is where the goal wants its own objects: it is offered only when nothing
-        else fits, so an obstacle is put aside, not on the goal. Sorted by name, so the
-        answer is the same on every run.
-        """
-        # Which constraints are decided depends on the names bound, not on the values:
-        # the same for every candidate. The objects of a type and the goal's names depend
-        # on the task only; only the constraints are read from the state, on every call.
-        checks = _decided(template, {**binding, parameter.name: ""})
-        out: list[str] = []
-        for candidate in self._objects_of(parameter.type):
-            trial = dict(binding)
-            trial[parameter.name] = candidate
-            if all(self._holds(c, trial) for c in checks):
-                out.append(candidate)
-        named = self._goal_names
-        if named is None:
-            named = self._goal_names = frozenset(
-                a for g in self.task.goal_literals for a in g.atom.args)
-        return [c for c in out if c not in named] or out
-
-    def _objects_of(self, type_name: str) -> tuple[str, ...]:
-        """`Task.objects_of`, remembered per type: the task's objects do not change."""
-        found = self._objects.get(type_name)
-        if found is None:
-            found = self._objects[type_name] = self.task.objects_of(type_name)
-        return found
+        """Objects of the parameter's type that satisfy the template's `where` constraints
+        now (btplan.robot.refine)."""
+        return self._refiner(template, binding, parameter)
 
     def _stale(self, action: GroundAction) -> bool:
         """A refined value whose `where` constraints no longer hold: a route that is gone.
@@ -229,17 +206,4 @@ class SymbolicWorld:
                        if refined & set(c.args))
 
     def _holds(self, literal: Literal, binding: Mapping[str, str]) -> bool:
-        args = tuple(binding.get(a, a) for a in literal.args)
-        if literal.predicate == EQUALITY:
-            value = args[0] == args[1]
-        else:
-            value = Atom(literal.predicate, args) in self._state
-        return value is literal.positive
-
-
-def _decided(template: ActionTemplate, binding: Mapping[str, str]) -> list[Literal]:
-    """The constraints whose parameters are all bound; constants count as bound."""
-    names = {p.name for p in template.parameters}
-    return [
-        c for c in template.constraints if all(a in binding or a not in names for a in c.args)
-    ]
+        return holds(literal, binding, self._state)

@@ -13,6 +13,7 @@ from collections.abc import Mapping
 
 from btplan.errors import WorldError
 from btplan.model import ActionTemplate, Parameter, Task
+from btplan.robot.contract import Capabilities
 from btplan.worlds.pybullet import motion, samplers
 from btplan.worlds.pybullet.agents import SceneAgents
 from btplan.worlds.pybullet.arm import Timings
@@ -107,8 +108,10 @@ class PyBulletWorld(SkillWorld[SceneState, Conditions]):
             "arm_ompl_followed": self.timings.ompl_followed,
         }
 
-    continuous = True
-    """Facts change while an action runs (read by the acting loop's check for loops)."""
+    capabilities = Capabilities(refines=True, continuous=True, outside_changes=True,
+                                lessons=True, dead_ends=True, closes=True)
+    """Facts change while an action runs; agents push cubes while the robot acts; a
+    failed grasp teaches a side not to try again; `dead_ends` and `close` are offered."""
 
     @property
     def outside_changes(self) -> int:

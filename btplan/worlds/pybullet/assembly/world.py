@@ -12,6 +12,7 @@ from collections.abc import Mapping
 
 from btplan.errors import WorldError
 from btplan.model import ActionTemplate, Parameter, Task
+from btplan.robot.contract import Capabilities
 from btplan.worlds.pybullet import motion
 from btplan.worlds.pybullet.arm import Timings
 from btplan.worlds.pybullet.assembly import skills
@@ -25,6 +26,8 @@ from btplan.worlds.pybullet.skill_world import SkillWorld
 
 class AssemblyWorld(SkillWorld[AssemblyState, AssemblyConditions]):
     """Two Pandas across a table, parts to assemble on a fixture; see the module docstring."""
+
+    capabilities = Capabilities(refines=True, closes=True)
 
     def __init__(self, task: Task, scene: AssemblyScene, seed: int = 0, gui: bool = False,
                  verbose: bool = False) -> None:

@@ -1,0 +1,256 @@
+"""The robot as the tree sees it: the loop owns every running skill and every log.
+
+The tree's leaves call `check`, `start`, `step` and `halt` with a key; a tree may name
+the same grounded action in several leaves, and a robot with one handle per skill (one
+navigation goal, one gripper) cannot be started twice. `Skills` stands between the
+tree and the world and keeps the rules of btplan.robot.contract:
+
+- a grounded action runs at most once at a time: a second leaf's `start` while it runs
+  goes on with it, a `step` after it was halted starts it again, and a `halt` from one
+  leaf in the tick another leaf ran it is not sent;
+- every call is guarded: an exception is that action's FAILURE (that condition's
+  false), with its message in the tick's events, unless the run stops on it;
+- an action whose effects all hold when the tree turns away from it is logged as
+  finished with its effects observed, not as cut short (asynchronous skills report
+  SUCCESS after the world already shows their work);
+- `facts()` accepts any iterable of atoms or `(predicate, *args)` tuples and hands the
+  planner one frozenset of atoms, the same object while the state is the same;
+- `halt_all` stops every running skill on every way out of a run, waits a bounded time
+  for those that say when they stop, and names those that did not.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping
+
+from btplan.acting.clock import Clock, SystemClock
+from btplan.bt import FAILURE, RUNNING, SUCCESS, LeafKey, Status
+from btplan.errors import SkillError
+from btplan.model import ActionTemplate, Atom, GroundAction, Parameter
+from btplan.records import field, record
+from btplan.robot.contract import Capabilities, World, capabilities_of
+
+__all__ = ["SkillEvents", "Skills"]
+
+HALT_WAIT = 2.0
+"""Seconds the loop waits, on a way out, for halted skills that report when they stop."""
+
+
+@record(slots=True)
+class SkillEvents:
+    """What the robot's skills did since the events were last taken (one tick)."""
+
+    started: list[GroundAction] = field(default_factory=list)
+    finished: list[GroundAction] = field(default_factory=list)
+    observed: list[GroundAction] = field(default_factory=list)
+    """Of `finished`, those whose effects showed before the skill reported SUCCESS."""
+    halted: list[GroundAction] = field(default_factory=list)
+    failed: list[GroundAction] = field(default_factory=list)
+    errors: list[tuple[str, str]] = field(default_factory=list)
+    """(action or condition, message) for every exception a world call raised."""
+
+
+class Skills:
+    """The world behind the tree's leaves, with the loop's logs (see the module docstring)."""
+
+    def __init__(self, world: World, grounding: Mapping[LeafKey, GroundAction],
+                 stop_on_error: bool = False,
+                 fallback_refine: Callable[[ActionTemplate, Mapping[str, str], Parameter],
+                                           list[str]] | None = None) -> None:
+        self.world = world
+        self.capabilities: Capabilities = capabilities_of(world)
+        self.grounding = grounding
+        self.stop_on_error = stop_on_error
+        self.running: dict[LeafKey, GroundAction] = {}
+        """Skills started and not yet ended or halted, in the order they started."""
+        self.executed: list[GroundAction] = []
+        """Every action finished, in order: the plan the robot carried out."""
+        self.ended = 0
+        """Actions that ended (finished, failed or halted): the loop's check for circles."""
+        self.events = SkillEvents()
+        self._ticked: dict[LeafKey, Status] = {}
+        self._raw: object = None
+        self._facts: frozenset[Atom] = frozenset()
+        refine = getattr(world, "refine", None) if self.capabilities.refines else None
+        self.refine = refine if refine is not None else fallback_refine
+
+    # --- the tree's side ----------------------------------------------------------------
+
+    def begin_tick(self) -> None:
+        """A new tick of the tree: each grounded action may be run once in it."""
+        self._ticked.clear()
+
+    def check(self, key: LeafKey) -> bool:
+        try:
+            return bool(self.world.check(key))
+        except Exception as error:  # noqa: BLE001 (a robot's error is a false condition)
+            self._error(f"{key[0]}({', '.join(key[1])})", error)
+            return False
+
+    def start(self, key: LeafKey) -> Status:
+        given = self._ticked.get(key)
+        if given is not None:
+            return given  # another leaf ran it in this tick
+        if key in self.running:
+            return self._advance(key)  # still running: go on with it, never start it twice
+        return self._begin(key)
+
+    def step(self, key: LeafKey) -> Status:
+        given = self._ticked.get(key)
+        if given is not None:
+            return given
+        if key not in self.running:
+            return self._begin(key)  # halted for another leaf, or never started: start it
+        return self._advance(key)
+
+    def halt(self, key: LeafKey) -> None:
+        if key not in self.running or key in self._ticked:
+            return  # not running, or another leaf runs it in this tick
+        self._halt(key)
+
+    def facts(self) -> frozenset[Atom]:
+        """The state as one frozenset of atoms; the same object while it is unchanged."""
+        raw = self.world.facts()
+        if raw is self._raw:
+            return self._facts
+        facts = _atoms(raw)
+        self._raw = raw
+        if facts != self._facts:
+            self._facts = facts
+        return self._facts
+
+    # --- the loop's side ----------------------------------------------------------------
+
+    def take_events(self) -> SkillEvents:
+        """The events since the last call (one tick's), and a fresh list for the next."""
+        events, self.events = self.events, SkillEvents()
+        return events
+
+    def halt_all(self, wait: float = HALT_WAIT, clock: Clock | None = None) -> list[str]:
+        """Halt every running skill; wait up to `wait` seconds for those a world says when
+        they stop. Returns the actions that did not stop in time."""
+        keys = list(self.running)
+        for key in keys:
+            self._halt(key)
+        if not keys or not self.capabilities.reports_stopped:
+            return []
+        clock = clock or SystemClock()
+        deadline = clock.now() + wait
+        moving = list(keys)
+        while moving:
+            moving = [k for k in moving if not self._stopped(k)]
+            if not moving or clock.now() >= deadline:
+                break
+            clock.sleep(0.01)
+        return [str(self._action(k)) for k in moving]
+
+    # ---------------------------------------------------------------------------------
+
+    def _begin(self, key: LeafKey) -> Status:
+        action = self._action(key)
+        self.events.started.append(action)
+        self.running[key] = action
+        return self._settle(key, self._call(key, self.world.start))
+
+    def _advance(self, key: LeafKey) -> Status:
+        return self._settle(key, self._call(key, self.world.step))
+
+    def _settle(self, key: LeafKey, status: Status) -> Status:
+        """Log how a start or step ended, and remember it for the other leaves this tick."""
+        self._ticked[key] = status
+        if status is RUNNING:
+            return status
+        action = self.running.pop(key, None) or self._action(key)
+        self.ended += 1
+        if status is SUCCESS:
+            self.events.finished.append(action)
+            self.executed.append(action)
+        else:
+            self.events.failed.append(action)
+        return status
+
+    def _halt(self, key: LeafKey) -> None:
+        action = self.running.pop(key)
+        observed = self._effects_hold(action)
+        try:
+            self.world.halt(key)
+        except Exception as error:  # noqa: BLE001 (logged; the others must still be halted)
+            self._error(str(action), error, raise_it=False)
+        self.ended += 1
+        if observed:
+            self.events.finished.append(action)
+            self.events.observed.append(action)
+            self.executed.append(action)
+        else:
+            self.events.halted.append(action)
+
+    def _call(self, key: LeafKey, call: Callable[[LeafKey], Status]) -> Status:
+        try:
+            status = call(key)
+        except Exception as error:  # noqa: BLE001 (a robot's error is the action's failure)
+            self._error(str(self._action(key)), error)
+            self._quietly_halt(key)
+            return FAILURE
+        if status is True:
+            return SUCCESS
+        if status is False:
+            return FAILURE
+        if status not in (RUNNING, SUCCESS, FAILURE):
+            self._error(str(self._action(key)), TypeError(
+                f"a skill must answer RUNNING, SUCCESS or FAILURE, not {status!r}"))
+            self._quietly_halt(key)
+            return FAILURE
+        return status
+
+    def _quietly_halt(self, key: LeafKey) -> None:
+        """After an exception the skill's state is unknown: tell it to stop, ignore errors."""
+        try:
+            self.world.halt(key)
+        except Exception:  # noqa: BLE001, S110 (already failed; its first error is logged)
+            pass
+
+    def _error(self, what: str, error: Exception, raise_it: bool = True) -> None:
+        message = str(error) or type(error).__name__
+        self.events.errors.append((what, message))
+        if raise_it and self.stop_on_error:
+            raise SkillError(what, message) from error
+
+    def _stopped(self, key: LeafKey) -> bool:
+        try:
+            return bool(self.world.stopped(key))  # type: ignore[attr-defined]
+        except Exception:  # noqa: BLE001 (cannot tell: counts as not stopped)
+            return False
+
+    def _effects_hold(self, action: GroundAction) -> bool:
+        if not action.add and not action.delete:
+            return False
+        state = self.facts()
+        return all(a in state for a in action.add) and not any(
+            a in state for a in action.delete if a not in action.add)
+
+    def _action(self, key: LeafKey) -> GroundAction:
+        action = self.grounding.get(key)
+        return action if action is not None else GroundAction(name=key[0], args=tuple(key[1]))
+
+
+def _atoms(raw: Iterable[object]) -> frozenset[Atom]:
+    """btplan atoms from what a world's `facts()` gave: atoms, `(predicate, args)` pairs
+    or flat `(predicate, *args)` tuples."""
+    if isinstance(raw, frozenset) and all(type(a) is Atom for a in raw):
+        return raw
+    out: list[Atom] = []
+    for item in raw:
+        if type(item) is Atom:
+            out.append(item)
+            continue
+        if isinstance(item, str):
+            out.append(Atom(item, ()))
+            continue
+        parts = tuple(item)  # type: ignore[call-overload]
+        if not parts or not isinstance(parts[0], str):
+            raise TypeError(f"a fact must be an Atom or a (predicate, *args) tuple, not {item!r}")
+        if len(parts) == 2 and isinstance(parts[1], tuple):
+            out.append(Atom(parts[0], tuple(str(a) for a in parts[1])))
+        else:
+            out.append(Atom(parts[0], tuple(str(a) for a in parts[1:])))
+    return frozenset(out)

@@ -1,0 +1,287 @@
+"""`Robot`: a world for the blended loop written as conditions and skills in plain Python.
+
+    robot = Robot()
+
+    @robot.condition("holding")
+    def holding(obj: str) -> bool:          # over the robot's current state
+        return gripper.object == obj
+
+    @robot.action("Pick")
+    def pick(obj: str) -> Future:           # start a skill; the loop polls it
+        return driver.pick_async(obj)
+
+    btplan.run(task, world=robot, rate=10)
+
+Conditions get the grounded objects of the predicate; actions get the grounded objects
+and refined values of the template's parameters, in order, and start a skill
+(btplan.robot.skills says what they may return). A subclass may declare them as
+methods instead, with the `condition` and `action` decorators of this module.
+
+Before the run, `bind(task)` checks the robot against the domain: every action
+template and every predicate that actions change must be bound (a clear error names
+each missing one, with close matches); predicates no action changes are answered from
+the problem. A refined parameter is refined by a `refiner` when one is given, else by
+the objects of its type that its `where` constraints hold for.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable, Iterable, Iterator, Mapping
+from difflib import get_close_matches
+from itertools import product
+from typing import Any, TypeVar
+
+from btplan.bt.status import FAILURE, RUNNING, Status
+from btplan.bt.world import LeafKey
+from btplan.errors import InputError, Span, WorldError
+from btplan.model import WILDCARD, ActionTemplate, Atom, Parameter, Task
+from btplan.records import record
+from btplan.robot.contract import Capabilities
+from btplan.robot.refine import ConstraintRefiner
+from btplan.robot.skills import Running, Threads, as_status
+
+__all__ = ["Ask", "Robot", "action", "condition", "refiner"]
+
+F = TypeVar("F", bound=Callable[..., Any])
+AT = Span("robot", 1, 1)
+
+
+@record(frozen=True, slots=True)
+class Ask:
+    """A refiner's question: values for `parameter` of `action`, given what is bound.
+
+    `binding` maps the parameters bound so far to their values; `where` holds the
+    template's `where` constraints with those values put in (`("door_of", ("kitchen",
+    "?p"))`: unbound parameters as `?name`), so that a refiner sees a target the
+    constraints name even when no ordinary parameter carries it."""
+
+    action: str
+    parameter: str
+    type: str
+    binding: Mapping[str, str]
+    where: tuple[tuple[str, tuple[str, ...]], ...]
+
+
+def condition(name: str) -> Callable[[F], F]:
+    """Mark a method of a Robot subclass as the condition `name` (a predicate)."""
+    return _mark("condition", name)
+
+
+def action(name: str, *, threaded: bool = False) -> Callable[[F], F]:
+    """Mark a method of a Robot subclass as the action `name` (an action template);
+    `threaded`: run it in a thread of its own, with a `stop` event a halt sets."""
+    return _mark("threaded" if threaded else "action", name)
+
+
+def refiner(action_name: str, parameter: str) -> Callable[[F], F]:
+    """Mark a method of a Robot subclass as the refiner of `parameter` of `action_name`."""
+    return _mark("refiner", f"{action_name}.{parameter}")
+
+
+def _mark(kind: str, name: str) -> Callable[[F], F]:
+    def mark(function: F) -> F:
+        function.__btplan_binding__ = (kind, name)  # type: ignore[attr-defined]
+        return function
+
+    return mark
+
+
+class Robot:
+    """A world made of conditions, skills and refiners (see the module docstring)."""
+
+    def __init__(self) -> None:
+        self._conditions: dict[str, Callable[..., object]] = {}
+        self._actions: dict[str, tuple[Callable[..., object], bool]] = {}
+        self._refiners: dict[tuple[str, str], Callable[[Ask], Iterable[str]]] = {}
+        self._running: dict[LeafKey, Running] = {}
+        self._stopping: dict[LeafKey, Running] = {}
+        self._threads = Threads()
+        self._lock = threading.Lock()
+        self._task: Task | None = None
+        self._static: frozenset[Atom] = frozenset()
+        self._groundings: dict[str, list[tuple[str, ...]]] = {}
+        self._fallback: ConstraintRefiner | None = None
+        self.capabilities = Capabilities(refines=True, reports_stopped=True, closes=True)
+        for attribute in dir(type(self)):
+            method = getattr(self, attribute, None)
+            binding = getattr(method, "__btplan_binding__", None)
+            if binding is not None:
+                self._register(binding[0], binding[1], method)
+
+    # --- registering -------------------------------------------------------------------
+
+    def condition(self, name: str) -> Callable[[F], F]:
+        """Register the decorated function as the condition `name` (a predicate)."""
+        return self._registrar("condition", name)
+
+    def action(self, name: str, *, threaded: bool = False) -> Callable[[F], F]:
+        """Register the decorated function as the action `name` (see `action` above)."""
+        return self._registrar("threaded" if threaded else "action", name)
+
+    def refiner(self, action_name: str, parameter: str) -> Callable[[F], F]:
+        """Register the decorated function, `fn(ask: Ask) -> values`, as a refiner."""
+        return self._registrar("refiner", f"{action_name}.{parameter}")
+
+    def _registrar(self, kind: str, name: str) -> Callable[[F], F]:
+        def register(function: F) -> F:
+            self._register(kind, name, function)
+            return function
+
+        return register
+
+    def _register(self, kind: str, name: str, function: Callable[..., Any]) -> None:
+        if kind == "condition":
+            self._conditions[name] = function
+        elif kind == "refiner":
+            action_name, _, parameter = name.partition(".")
+            self._refiners[(action_name, parameter)] = function
+        else:
+            self._actions[name] = (function, kind == "threaded")
+
+    # --- checked against the task --------------------------------------------------------
+
+    def bind(self, task: Task) -> None:
+        """Check the robot against `task` and get ready to act in it (see the module
+        docstring); raises InputError naming every missing or unknown binding."""
+        domain = task.domain
+        actions = sorted(a.name for a in domain.actions)
+        changing = sorted(domain.changed_predicates)
+        predicates = sorted(p.name for p in domain.predicates)
+        problems = [
+            *_missing("action", actions, self._actions),
+            *_missing("changing predicate", changing, self._conditions),
+            *_unknown("action", self._actions, actions),
+            *_unknown("predicate", self._conditions, predicates),
+            *_unknown("action", {a for a, _ in self._refiners}, actions),
+        ]
+        if problems:
+            raise InputError(f"{type(self).__name__} does not fit domain "
+                             f"'{domain.name}': " + "; ".join(problems), AT,
+                             "see docs/robot.md")
+        self._task = task
+        self._static = frozenset(a for a in task.initial_state
+                                 if a.predicate not in self._conditions)
+        self._groundings = {p.name: _groundings(task, [a.type for a in p.parameters])
+                            for p in domain.predicates if p.name in self._conditions}
+        self._fallback = ConstraintRefiner(task, self.facts)
+
+    # --- the world contract ------------------------------------------------------------
+
+    def check(self, key: LeafKey) -> bool:
+        name, args = key
+        function = self._conditions.get(name)
+        if function is None:
+            return key in self._static or Atom(name, tuple(args)) in self._static
+        if WILDCARD in args:
+            return any(_truth(function(*g), name) for g in self._groundings.get(name, ())
+                       if all(a in (WILDCARD, b) for a, b in zip(args, g)))
+        return _truth(function(*args), name)
+
+    def facts(self) -> frozenset[Atom]:
+        """Every condition evaluated over every grounding, with the static facts."""
+        found = set(self._static)
+        for name, function in self._conditions.items():
+            for args in self._groundings.get(name, ()):
+                if _truth(function(*args), name):
+                    found.add(Atom(name, args))
+        return frozenset(found)
+
+    def start(self, key: LeafKey) -> Status:
+        name, args = key
+        bound = self._actions.get(name)
+        if bound is None:
+            raise WorldError(f"{type(self).__name__} has no action {name!r}")
+        function, threaded = bound
+        what = f"{name}({', '.join(args)})"
+        stop = threading.Event() if threaded else None
+        if stop is not None:
+            answer: object = self._threads.submit(function, *args, stop=stop)
+        else:
+            answer = function(*args)
+        if answer is None or isinstance(answer, (bool, Status)):
+            return as_status(True if answer is None else answer, what)  # ended at once
+        running = Running(what, answer, stop)
+        with self._lock:
+            self._running[key] = running
+        return self._poll(key, running)
+
+    def step(self, key: LeafKey) -> Status:
+        running = self._running.get(key)
+        if running is None:
+            raise WorldError(f"{key[0]} was stepped without being started")
+        return self._poll(key, running)
+
+    def halt(self, key: LeafKey) -> None:
+        with self._lock:
+            running = self._running.pop(key, None)
+        if running is None:
+            return
+        self._stopping[key] = running
+        running.cancel()
+
+    def stopped(self, key: LeafKey) -> bool:
+        """Whether a halted skill has come to rest (the loop waits for it on the way out)."""
+        running = self._stopping.get(key)
+        if running is None or running.stopped():
+            self._stopping.pop(key, None)
+            return True
+        return False
+
+    def refine(self, template: ActionTemplate, binding: Mapping[str, str],
+               parameter: Parameter) -> list[str]:
+        function = self._refiners.get((template.name, parameter.name))
+        if function is None:
+            if self._fallback is None:
+                raise WorldError("the robot is not bound to a task: call bind(task) first")
+            return self._fallback(template, binding, parameter)
+        where = tuple((c.predicate, tuple(binding.get(a, f"?{a}") if a in _names(template)
+                                          else a for a in c.args))
+                      for c in template.constraints)
+        ask = Ask(template.name, parameter.name, parameter.type, dict(binding), where)
+        return [str(v) for v in function(ask)]
+
+    def close(self) -> None:
+        """Cancel whatever still runs and let the skill threads go."""
+        for key in list(self._running):
+            self.halt(key)
+        self._threads.shutdown()
+
+    # ---------------------------------------------------------------------------------
+
+    def _poll(self, key: LeafKey, running: Running) -> Status:
+        status = running.poll() if not running.cancelled else FAILURE
+        if status is not RUNNING:
+            with self._lock:
+                self._running.pop(key, None)
+        return status
+
+
+def _names(template: ActionTemplate) -> set[str]:
+    return {p.name for p in template.parameters}
+
+
+def _truth(answer: object, name: str) -> bool:
+    if isinstance(answer, bool):
+        return answer
+    raise TypeError(f"the condition {name!r} answered {answer!r}; expected True or False")
+
+
+def _groundings(task: Task, types: list[str]) -> list[tuple[str, ...]]:
+    return [tuple(g) for g in product(*(task.objects_of(t) for t in types))]
+
+
+def _missing(kind: str, names: list[str], bound: Mapping[str, object]) -> Iterator[str]:
+    for name in names:
+        if name not in bound:
+            near = get_close_matches(name, sorted(bound), n=1)
+            yield f"no {kind} bound for '{name}'" + (
+                f" (did you mean to register '{near[0]}' as '{name}'?)" if near else "")
+
+
+def _unknown(kind: str, bound: Iterable[str], names: list[str]) -> Iterator[str]:
+    for name in sorted(bound):
+        if name not in names:
+            near = get_close_matches(name, names, n=1)
+            yield f"'{name}' is bound but the domain has no {kind} of that name" + (
+                f" (did you mean '{near[0]}'?)" if near else "")
