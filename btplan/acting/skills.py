@@ -90,7 +90,7 @@ class Skills:
     def start(self, key: LeafKey) -> Status:
         given = self._ticked.get(key)
         if given is not None:
-            return given  # another leaf ran it in this tick
+            return given  # another leaf runs it in this tick
         if key in self.running:
             return self._advance(key)  # still running: go on with it, never start it twice
         return self._begin(key)
@@ -156,9 +156,10 @@ class Skills:
         return self._settle(key, self._call(key, self.world.step))
 
     def _settle(self, key: LeafKey, status: Status) -> Status:
-        """Log how a start or step ended, and remember it for the other leaves this tick."""
-        self._ticked[key] = status
+        """Log how a start or step ended; a skill still running is the same skill for the
+        other leaves that name it in this tick (one that ended may be run again)."""
         if status is RUNNING:
+            self._ticked[key] = status
             return status
         action = self.running.pop(key, None) or self._action(key)
         self.ended += 1

@@ -19,7 +19,7 @@ OBSTACLE = load(str(DOMAINS / "pick_place_obstacle.bt"))
 BLOCK = ["set:blocks(sphere, tau_goal)@{t}"]
 
 
-@pytest.mark.parametrize("tick", [1, 2, 5, 8])
+@pytest.mark.parametrize("tick", [1, 2, 5, 6])  # the undisturbed run takes 7 ticks
 def test_a_path_blocked_at_any_time_is_cleared_and_the_goal_reached(tick: int) -> None:
     result = run(OBSTACLE, disturb=[s.format(t=tick) for s in BLOCK], max_ticks=200)
     assert result.reached, result.reason

@@ -13,6 +13,8 @@ from btplan.errors import InputError
 from btplan.model import Atom
 from btplan.planner import PlannerOptions
 from btplan.worlds.agents import Disturbance
+from btplan.acting.config import ActingConfig
+from tests.presets import departures
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 OBSTACLE = load(str(DOMAINS / "pick_place_obstacle.bt"))
@@ -20,7 +22,7 @@ BLOCK_EARLY = ["set:blocks(sphere, tau_goal)@2"]
 
 
 def test_an_early_obstruction_is_cleared_with_the_published_algorithms() -> None:
-    result = run(OBSTACLE, disturb=BLOCK_EARLY, options=PlannerOptions.paper())
+    result = run(OBSTACLE, disturb=BLOCK_EARLY, config=ActingConfig.paper())
     assert result.reached
     finished = result.summary().finished
     assert finished.index("Pick(sphere)") < finished.index("Place(sphere, aside)")
@@ -86,8 +88,8 @@ class BlockBehind:
 def test_a_path_blocked_behind_the_robot_is_cleared_only_when_scoped(scope: bool) -> None:
     # The early block makes the tree clear the path, a subtree that conflict resolution
     # moves before picking the cube; the second block comes once the robot is at the goal.
-    result = run(OBSTACLE, agents=[BlockBehind()], disturb=BLOCK_EARLY, look_ahead=True,
-                 scope_moves=scope)
+    result = run(OBSTACLE, agents=[BlockBehind()], disturb=BLOCK_EARLY, config=departures(look_ahead=True,
+                 scope_moves=scope))
     assert result.reached
     total = result.summary()
     assert total.disturbances[-1].agent == "block-behind"

@@ -58,8 +58,10 @@ def test_growing_the_tree_within_a_tick_acts_as_soon_as_a_planner_would() -> Non
     from btplan.acting import run
     from btplan.planner import PlannerOptions
 
-    paper = run(TASK, max_ticks=50)
-    eager = run(TASK, max_ticks=50, options=PlannerOptions(expansions_per_tick=16))
+    from tests.presets import departures
+
+    paper = run(TASK, max_ticks=50, config=departures(PlannerOptions()))
+    eager = run(TASK, max_ticks=50, config=departures(PlannerOptions(expansions_per_tick=16)))
     planned, _ = act("replan")
     assert paper.reached and eager.reached
     assert (paper.ticks, eager.ticks, planned.ticks) == (11, 7, 7)

@@ -14,6 +14,7 @@ from btplan.bt.world import LeafKey
 from btplan.model import GroundAction, Task
 from btplan.sweep.scenarios import resolve
 from btplan.worlds.symbolic import SymbolicWorld
+from tests.presets import departures
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -98,9 +99,10 @@ def _packages(finish_first: bool, seed: int) -> tuple[int, int]:
     task: Task = scenario.prepare(load(str(ROOT / "bench" / "problems" / "logistics_1.bt")))
     world = SymbolicWorld(task, seed=seed)
     outcome = run(task, world=world, agents=scenario.agents(task, 0.3, seed), seed=seed,
-                  max_ticks=400, options=replace(ACTING_OPTIONS, expansions_per_tick=64),
-                  look_ahead=True, scope_moves=True, goal_credit=True,
-                  finish_first=finish_first)
+                  max_ticks=400,
+                  config=departures(replace(ACTING_OPTIONS, expansions_per_tick=64),
+                                    look_ahead=True, scope_moves=True, goal_credit=True,
+                                    finish_first=finish_first))
     assert outcome.reached
     return outcome.ticks, len(world.halted)
 

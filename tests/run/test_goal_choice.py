@@ -22,6 +22,7 @@ from btplan.model import Atom, GroundLiteral, Task
 from btplan.planner import AchieverIndex
 from btplan.planner.expand import atomic_bt, condition_node
 from btplan.planner.heuristic import RelaxedModel
+from tests.presets import departures
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 OPTIONS = replace(ACTING_OPTIONS, expansions_per_tick=64)
@@ -65,8 +66,8 @@ def task_of(tmp_path: Path, domain: str, problem: str, name: str) -> Task:
 
 
 def executed(task: Task, goal_credit: bool) -> list[str]:
-    outcome = run(task, look_ahead=True, scope_moves=True, goal_credit=goal_credit,
-                  options=OPTIONS)
+    outcome = run(task, config=departures(OPTIONS, look_ahead=True, scope_moves=True,
+                                          goal_credit=goal_credit))
     assert outcome.reached
     return [str(a) for a in outcome.world.executed]
 
@@ -200,8 +201,8 @@ def test_a_runs_relaxed_model_is_freed_once_the_run_is_over(tmp_path: Path) -> N
     task = task_of(tmp_path, "blocksworld.bt", DETOUR, "detour")
     index = AchieverIndex(task, OPTIONS)
     relaxed = weakref.ref(index.relaxed)
-    outcome = run(task, look_ahead=True, scope_moves=True, goal_credit=True,
-                  options=OPTIONS, models=index)
+    outcome = run(task, config=departures(OPTIONS, look_ahead=True, scope_moves=True,
+                                          goal_credit=True), models=index)
     assert outcome.reached and relaxed() in _PLANS  # the run kept its relaxed plans
     del outcome, index
     gc.collect()

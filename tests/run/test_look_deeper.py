@@ -16,6 +16,7 @@ from btplan.bt import Sequence
 from btplan.model import Atom, GroundLiteral, Task
 from btplan.planner import AchieverIndex, Judge
 from btplan.planner.expand import condition_node
+from tests.presets import departures
 
 ROOT = Path(__file__).resolve().parents[2]
 DOMAINS = ROOT / "domains"
@@ -97,7 +98,8 @@ def door(tmp_path: Path, other_way: str = "") -> Task:
 
 
 def acted(task: Task) -> RunOutcome:
-    outcome = run(task, look_ahead=True, scope_moves=True, options=OPTIONS, max_ticks=100)
+    outcome = run(task, config=departures(OPTIONS, look_ahead=True, scope_moves=True),
+                  max_ticks=100)
     assert outcome.reached
     return outcome
 
@@ -151,8 +153,8 @@ def test_forced_out_asks_every_achiever(tmp_path: Path) -> None:
 @pytest.mark.parametrize("other_way", ["", KICK])
 def test_without_the_look_ahead_only_a_forcing_condition_is_expanded_early(
         tmp_path: Path, other_way: str) -> None:
-    outcome = run(door(tmp_path, other_way), look_deeper=True, scope_moves=True,
-                  options=OPTIONS, max_ticks=100)
+    outcome = run(door(tmp_path, other_way),
+                  config=departures(OPTIONS, look_deeper=True, scope_moves=True), max_ticks=100)
     assert outcome.reached
     steps = [str(a) for a in outcome.executed]
     if other_way:  # Go(goal) fits with the box in hand: at(goal) waits for the tick
@@ -167,8 +169,8 @@ def test_a_condition_on_the_way_to_what_is_held_is_left_to_the_tick() -> None:
     """b3 lies under b4 under b6: clearing b4 (for on(b1, b4)) conflicts with on(b3, b6),
     but stacking b3 clears b4 on its way, so it is not expanded a second time ahead."""
     task = load(str(ROOT / "bench" / "problems" / "blocksworld_6.bt"))
-    outcome = run(task, look_ahead=True, scope_moves=True, goal_credit=True, options=OPTIONS,
-                  max_ticks=100)
+    outcome = run(task, config=departures(OPTIONS, look_ahead=True, scope_moves=True,
+                                          goal_credit=True), max_ticks=100)
     assert outcome.reached
     conditions = [e.condition for r in outcome.records for e in r.expansions]
     assert conditions.count("clear(b4)") == 1

@@ -108,9 +108,11 @@ def test_runtime_expansion_a_blocked_path_grows_the_tree_on_the_fly() -> None:
     assert grown[0][1].condition == "not blocks(_, tau_goal)"
     assert grown[0][1].achievers == ("Place(sphere, aside)",)
     assert grown[0][1].conflicts_resolved >= 1 and grown[0][1].moves >= 1
-    assert [e.condition for _, e in grown] == [
+    # The order of the later expansions is the look-ahead's (docs/robot.md): the same five
+    # conditions, each once.
+    assert sorted(e.condition for _, e in grown) == sorted([
         "not blocks(_, tau_goal)", "holding(sphere)", "near(sphere)", "hand_empty()",
-        "near(aside)"]
+        "near(aside)"])
     done_after = [a for r in result.records if r.tick >= at for a in r.finished]
     assert done_after == ["MoveTo(sphere, tau_sphere)", "Drop(cube)", "Pick(sphere)",
                           "MoveTo(aside, tau_aside)", "Place(sphere, aside)",

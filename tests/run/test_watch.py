@@ -12,6 +12,7 @@ from btplan.acting.watch import broken_ahead
 from btplan.bt import RUNNING, Action, Condition, Fallback, Node, Sequence, Status
 from btplan.bt.world import LeafKey
 from btplan.model import Atom
+from tests.presets import departures
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 OBSTACLE = load(str(DOMAINS / "pick_place_obstacle.bt"))
@@ -111,8 +112,9 @@ def test_a_path_blocked_while_the_robot_fetches_the_cube_is_cleared_first() -> N
     # about to drive through, drops the cube, clears the path and fetches it again.
     options = replace(ACTING_OPTIONS, expansions_per_tick=64)
     block = ["set:blocks(sphere, tau_goal)@2"]
-    watched = run(OBSTACLE, disturb=block, look_ahead=True, scope_moves=True, options=options)
-    lazy = run(OBSTACLE, disturb=block, options=options)
+    watched = run(OBSTACLE, disturb=block,
+                  config=departures(options, look_ahead=True, scope_moves=True))
+    lazy = run(OBSTACLE, disturb=block, config=departures(options))
     assert watched.reached and lazy.reached
     total = watched.summary()
     assert (2, "not blocks(_, tau_goal)") in [(t, e.condition) for t, e in total.expansions]
