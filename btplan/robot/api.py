@@ -26,6 +26,8 @@ the objects of its type that its `where` constraints hold for.
 
 from __future__ import annotations
 
+import inspect
+import os
 import threading
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from difflib import get_close_matches
@@ -35,7 +37,7 @@ from typing import Any, TypeVar
 from btplan.bt.status import FAILURE, RUNNING, Status
 from btplan.bt.world import LeafKey
 from btplan.errors import InputError, Span, WorldError
-from btplan.model import WILDCARD, ActionTemplate, Atom, Parameter, Task
+from btplan.model import EQUALITY, WILDCARD, ActionTemplate, Atom, Literal, Parameter, Task
 from btplan.records import record
 from btplan.robot.contract import Capabilities
 from btplan.robot.refine import ConstraintRefiner
@@ -44,7 +46,6 @@ from btplan.robot.skills import Running, Threads, as_status
 __all__ = ["Ask", "Robot", "action", "condition", "refiner"]
 
 F = TypeVar("F", bound=Callable[..., Any])
-AT = Span("robot", 1, 1)
 
 
 @record(frozen=True, slots=True)
@@ -54,7 +55,8 @@ class Ask:
     `binding` maps the parameters bound so far to their values; `where` holds the
     template's `where` constraints with those values put in (`("door_of", ("kitchen",
     "?p"))`: unbound parameters as `?name`), so that a refiner sees a target the
-    constraints name even when no ordinary parameter carries it."""
+    constraints name even when no ordinary parameter carries it. A negated constraint
+    is named `not door_of`; equalities are `==` and `!=` (`("!=", ("?r", "kitchen"))`)."""
 
     action: str
     parameter: str
@@ -95,7 +97,7 @@ class Robot:
         self._actions: dict[str, tuple[Callable[..., object], bool]] = {}
         self._refiners: dict[tuple[str, str], Callable[[Ask], Iterable[str]]] = {}
         self._running: dict[LeafKey, Running] = {}
-        self._stopping: dict[LeafKey, Running] = {}
+        self._stopping: dict[LeafKey, list[Running]] = {}
         self._threads = Threads()
         self._lock = threading.Lock()
         self._task: Task | None = None
@@ -103,11 +105,12 @@ class Robot:
         self._groundings: dict[str, list[tuple[str, ...]]] = {}
         self._fallback: ConstraintRefiner | None = None
         self.capabilities = Capabilities(refines=True, reports_stopped=True, closes=True)
+        # Marks are looked up on the class, so that no property of a subclass runs
+        # before its __init__ has set what the property reads.
         for attribute in dir(type(self)):
-            method = getattr(self, attribute, None)
-            binding = getattr(method, "__btplan_binding__", None)
+            binding = getattr(getattr(type(self), attribute, None), "__btplan_binding__", None)
             if binding is not None:
-                self._register(binding[0], binding[1], method)
+                self._register(binding[0], binding[1], getattr(self, attribute))
 
     # --- registering -------------------------------------------------------------------
 
@@ -149,16 +152,17 @@ class Robot:
         changing = sorted(domain.changed_predicates)
         predicates = sorted(p.name for p in domain.predicates)
         problems = [
-            *_missing("action", actions, self._actions),
-            *_missing("changing predicate", changing, self._conditions),
-            *_unknown("action", self._actions, actions),
-            *_unknown("predicate", self._conditions, predicates),
-            *_unknown("action", {a for a, _ in self._refiners}, actions),
+            *_fit("action", actions, actions, self._actions),
+            *_fit("predicate", changing, predicates, self._conditions, "condition"),
+            *(f"a refiner: {why}" for why in
+              _fit("action", [], actions, {a for a, _ in self._refiners})),
+            *self._misfits(task),
         ]
         if problems:
+            span, line = _where_defined(type(self))
             raise InputError(f"{type(self).__name__} does not fit domain "
-                             f"'{domain.name}': " + "; ".join(problems), AT,
-                             "see docs/robot.md")
+                             f"'{domain.name}': " + "; ".join(problems), span,
+                             "see docs/robot.md", line)
         self._task = task
         self._static = frozenset(a for a in task.initial_state
                                  if a.predicate not in self._conditions)
@@ -166,13 +170,39 @@ class Robot:
                             for p in domain.predicates if p.name in self._conditions}
         self._fallback = ConstraintRefiner(task, self.facts)
 
+    def _misfits(self, task: Task) -> Iterator[str]:
+        """Functions that cannot take what the loop will pass them, and refiners of
+        parameters the planner never asks the world for."""
+        templates = {a.name: a for a in task.domain.actions}
+        for name, (function, threaded) in sorted(self._actions.items()):
+            template = templates.get(name)
+            if template is not None:
+                params = [p.name for p in template.parameters]
+                yield from _arity(name, function, params, threaded)
+        for predicate in task.domain.predicates:
+            answer = self._conditions.get(predicate.name)
+            if answer is not None:
+                params = [p.name for p in predicate.parameters]
+                yield from _arity(predicate.name, answer, params)
+        for action_name, parameter in sorted(self._refiners):
+            template = templates.get(action_name)
+            if template is None:
+                continue
+            refined = sorted(p.name for p in template.parameters if p.refined)
+            if parameter not in refined:
+                yield (f"a refiner is bound for {action_name}.{parameter}, but "
+                       f"{action_name} refines " + (", ".join(refined) or "nothing"))
+
     # --- the world contract ------------------------------------------------------------
 
     def check(self, key: LeafKey) -> bool:
         name, args = key
         function = self._conditions.get(name)
         if function is None:
-            return key in self._static or Atom(name, tuple(args)) in self._static
+            if WILDCARD in args:
+                return any(a.predicate == name and len(a.args) == len(args) and all(
+                    x in (WILDCARD, y) for x, y in zip(args, a.args)) for a in self._static)
+            return Atom(name, tuple(args)) in self._static
         if WILDCARD in args:
             return any(_truth(function(*g), name) for g in self._groundings.get(name, ())
                        if all(a in (WILDCARD, b) for a, b in zip(args, g)))
@@ -183,7 +213,14 @@ class Robot:
         found = set(self._static)
         for name, function in self._conditions.items():
             for args in self._groundings.get(name, ()):
-                if _truth(function(*args), name):
+                try:
+                    holds = _truth(function(*args), name)
+                except Exception as error:  # noqa: BLE001 (named below)
+                    # The planner needs every fact: a condition that cannot say is the
+                    # robot's fault, named as such, not a false fact nor a btplan bug.
+                    raise WorldError(f"the condition {name}({', '.join(args)}) raised "
+                                     f"{type(error).__name__}: {error}") from error
+                if holds:
                     found.add(Atom(name, args))
         return frozenset(found)
 
@@ -217,16 +254,15 @@ class Robot:
             running = self._running.pop(key, None)
         if running is None:
             return
-        self._stopping[key] = running
+        self._stopping.setdefault(key, []).append(running)
         running.cancel()
 
     def stopped(self, key: LeafKey) -> bool:
         """Whether a halted skill has come to rest (the loop waits for it on the way out)."""
-        running = self._stopping.get(key)
-        if running is None or running.stopped():
-            self._stopping.pop(key, None)
-            return True
-        return False
+        moving = [r for r in self._stopping.pop(key, ()) if not r.stopped()]
+        if moving:
+            self._stopping[key] = moving
+        return not moving
 
     def refine(self, template: ActionTemplate, binding: Mapping[str, str],
                parameter: Parameter) -> list[str]:
@@ -235,8 +271,9 @@ class Robot:
             if self._fallback is None:
                 raise WorldError("the robot is not bound to a task: call bind(task) first")
             return self._fallback(template, binding, parameter)
-        where = tuple((c.predicate, tuple(binding.get(a, f"?{a}") if a in _names(template)
-                                          else a for a in c.args))
+        names = _names(template)
+        where = tuple((_constraint_name(c), tuple(binding.get(a, f"?{a}") if a in names
+                                                  else a for a in c.args))
                       for c in template.constraints)
         ask = Ask(template.name, parameter.name, parameter.type, dict(binding), where)
         return [str(v) for v in function(ask)]
@@ -261,27 +298,76 @@ def _names(template: ActionTemplate) -> set[str]:
     return {p.name for p in template.parameters}
 
 
+def _constraint_name(literal: Literal) -> str:
+    if literal.predicate == EQUALITY:
+        return "==" if literal.positive else "!="
+    return literal.predicate if literal.positive else f"not {literal.predicate}"
+
+
 def _truth(answer: object, name: str) -> bool:
     if isinstance(answer, bool):
         return answer
+    kind = type(answer)
+    if kind.__module__ == "numpy" and kind.__name__.startswith("bool"):
+        return bool(answer)  # numpy.bool_ from a comparison of arrays
     raise TypeError(f"the condition {name!r} answered {answer!r}; expected True or False")
+
+
+def _arity(name: str, function: Callable[..., object], params: list[str],
+           threaded: bool = False) -> Iterator[str]:
+    """Whether `function` takes the grounded `params` in order (and `stop`, threaded)."""
+    try:
+        signature = inspect.signature(function)
+    except (TypeError, ValueError):
+        return  # a builtin or a C extension: nothing to read, the call will tell
+    try:
+        signature.bind(*params, **({"stop": None} if threaded else {}))
+    except TypeError:
+        takes = ", ".join(params + (["stop"] if threaded else []))
+        yield f"{_qualname(function)}{signature} cannot take {name}({takes})"
+
+
+def _qualname(function: Callable[..., object]) -> str:
+    return str(getattr(function, "__qualname__", None) or getattr(function, "__name__", "it"))
+
+
+def _where_defined(cls: type) -> tuple[Span | None, str | None]:
+    """Where a Robot subclass is written (file, line of its `class`), for the bind error."""
+    if cls is Robot:
+        return None, None
+    try:
+        lines, number = inspect.getsourcelines(cls)
+        path = inspect.getsourcefile(cls)
+    except (OSError, TypeError):
+        return None, None
+    if path is None:
+        return None, None
+    shown = os.path.relpath(path)
+    if shown.startswith(".."):
+        shown = path
+    text = next((line for line in lines if line.lstrip().startswith("class ")), lines[0])
+    column = len(text) - len(text.lstrip()) + 1
+    return Span(shown, number + lines.index(text), column), text
 
 
 def _groundings(task: Task, types: list[str]) -> list[tuple[str, ...]]:
     return [tuple(g) for g in product(*(task.objects_of(t) for t in types))]
 
 
-def _missing(kind: str, names: list[str], bound: Mapping[str, object]) -> Iterator[str]:
-    for name in names:
-        if name not in bound:
-            near = get_close_matches(name, sorted(bound), n=1)
-            yield f"no {kind} bound for '{name}'" + (
-                f" (did you mean to register '{near[0]}' as '{name}'?)" if near else "")
-
-
-def _unknown(kind: str, bound: Iterable[str], names: list[str]) -> Iterator[str]:
-    for name in sorted(bound):
-        if name not in names:
-            near = get_close_matches(name, names, n=1)
-            yield f"'{name}' is bound but the domain has no {kind} of that name" + (
-                f" (did you mean '{near[0]}'?)" if near else "")
+def _fit(kind: str, needed: list[str], known: list[str], bound: Iterable[str],
+         missing_as: str = "") -> Iterator[str]:
+    """Bound names that are not `known`, each with its likely meaning (a missing name
+    first: a misspelling), then the `needed` names left unbound, in one short item."""
+    bound = sorted(bound)
+    missing = [n for n in needed if n not in bound]
+    meant: set[str] = set()
+    for name in bound:
+        if name in known:
+            continue
+        near = get_close_matches(name, missing, n=1) or get_close_matches(name, known, n=1)
+        meant.update(near)
+        yield f"'{name}' is no {kind} of the domain" + (
+            f" (did you mean '{near[0]}'?)" if near else "")
+    rest = [n for n in missing if n not in meant]
+    if rest:
+        yield f"no {missing_as or kind} for {', '.join(rest)}"

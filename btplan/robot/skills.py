@@ -69,6 +69,9 @@ class Running:
             if error is not None:
                 raise error
             result = skill.result()
+            if result is RUNNING:  # done, yet still running: a mistake, not a wait
+                raise TypeError(f"{self.what} ended with RUNNING; a finished skill "
+                                "answers SUCCESS, FAILURE, a bool or None")
             return SUCCESS if result is None else as_status(result, self.what)
         poll = getattr(skill, "poll", None)
         if not callable(poll):
