@@ -12,7 +12,7 @@ DOMAINS = Path(__file__).resolve().parents[1] / "domains"
 
 task = load(str(DOMAINS / "pick_place.bt"))
 calm = run(task)
-disturbed = run(task, disturb=["undo:Pick@11"], seed=0)
+disturbed = run(task, disturb=["undo:Pick@5"], seed=0)
 
 for name, result in (("calm", calm), ("disturbed", disturbed)):
     total = result.summary()

@@ -13,9 +13,9 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 EXPECTED = {
     "plan_tree.py": ["4 expansions", ("the robot would do: MoveTo(cube, tau_cube), Pick(cube), "
                                       "MoveTo(goal, tau_goal), Place(cube, goal)")],
-    "run_disturbed.py": ["calm: reached=True ticks=11 expansions=4",
+    "run_disturbed.py": ["calm: reached=True ticks=7 expansions=4",
                          "disturbed: reached=True", "expansions=4",
-                         "tick 11: undid Pick(cube)"],
+                         "tick 5: undid Pick(cube)"],
     "export_xml.py": ['BTCPP_format="4"', "<ReactiveFallback", '<Place o="sphere" l="aside"/>',
                       '<blocks o="_" t="tau_goal"/>', '<Action ID="Place">'],
     "custom_agent.py": ["reached: True",

@@ -344,9 +344,9 @@ def summary_table(result: acting.RunOutcome) -> Table:
     table.add_row("executed", _listing(total.finished, total.count("finished")))
     if total.observed:
         table.add_row("  effects observed", _listing(total.observed, total.count("observed")))
-    table.add_row("halted", _listing(total.halted, total.count("halted")))
-    if result.halted_on_stop:
-        table.add_row("halted at the end", _listing(list(result.halted_on_stop)))
+    on_stop = list(result.halted_on_stop)  # running when the run ended, halted then
+    table.add_row("halted", _listing(total.halted + on_stop,
+                                     total.count("halted") + len(on_stop)))
     if total.unstopped:
         table.add_row("[red]did not stop[/]", _listing(total.unstopped))
     table.add_row("failed", _listing(total.failed, total.count("failed")))

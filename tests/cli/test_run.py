@@ -35,7 +35,7 @@ def test_the_plan_can_go_to_standard_output() -> None:
 
 def test_the_trace_has_one_json_line_per_tick_with_the_disturbance(tmp_path: Path) -> None:
     trace = tmp_path / "run.jsonl"
-    result = runner.invoke(app, ["run", PICK_PLACE, "--disturb", "undo:Pick@8",
+    result = runner.invoke(app, ["run", PICK_PLACE, "--paper", "--disturb", "undo:Pick@8",
                                  "--trace", str(trace)])
     assert result.exit_code == 0, result.output
     lines = [json.loads(line) for line in trace.read_text().splitlines()]
@@ -134,7 +134,7 @@ def test_a_pybullet_run_acts_with_the_scene_agents(tmp_path: Path) -> None:
                for line in lines for e in line["expansions"])
 
 
-def test_extended_grows_the_tree_within_a_tick_and_watches_the_way_ahead(
+def test_the_default_grows_the_tree_within_a_tick_and_watches_the_way_ahead(
         tmp_path: Path) -> None:
     obstacle = str(DOMAINS / "pick_place_obstacle.bt")
 
@@ -148,29 +148,29 @@ def test_extended_grows_the_tree_within_a_tick_and_watches_the_way_ahead(
         return [(line["tick"], [e["condition"] for e in line["expansions"]])
                 for line in lines if line["expansions"]]
 
-    plain, extended = expansions(), expansions("--extended")
-    # One expansion per tick, and the blocked path is met only when MoveTo(goal) is next.
+    plain, extended = expansions("--paper"), expansions()
+    # --paper: one expansion per tick, the blocked path met only when MoveTo(goal) is next.
     assert all(len(conditions) == 1 for _, conditions in plain)
     assert ("not blocks(_, tau_goal)" in dict(plain)[8])
-    # Extended: the whole plan at tick 1, the blocked path the tick the agent blocks it.
+    # Default: the whole plan at tick 1, the blocked path the tick the agent blocks it.
     assert extended[0] == (1, ["on(cube, goal)", "holding(cube)", "near(goal)", "near(cube)"])
     assert extended[1][0] == 3 and extended[1][1][0] == "not blocks(_, tau_goal)"
 
 
-def test_extended_retries_a_failing_action_within_the_tick_budget() -> None:
+def test_the_default_retries_a_failing_action_within_the_tick_budget() -> None:
     flags = ["run", PICK_PLACE, "--disturb", "fail:Pick@1..8", "--quiet"]
-    plain = runner.invoke(app, flags)
+    plain = runner.invoke(app, [*flags, "--paper"])
     assert plain.exit_code == 1
     assert "failed 4 ticks in a row" in plain.stderr
-    extended = runner.invoke(app, [*flags, "--extended"])
+    extended = runner.invoke(app, flags)
     assert extended.exit_code == 0, extended.output
     assert "goal reached" in extended.stderr
 
 
 @pytest.mark.slow
-def test_extended_in_pybullet_clears_the_doorway_before_it_picks_green() -> None:
+def test_the_default_in_pybullet_clears_the_doorway_before_it_picks_green() -> None:
     result = runner.invoke(app, ["run", str(DOMAINS / "youbot.bt"), "--sim", "pybullet",
-                                 "--extended", "--quiet", "--plan-out", "-"])
+                                 "--quiet", "--plan-out", "-"])
     assert result.exit_code == 0, result.output
     plan = result.stdout.splitlines()
     assert plan[:2] == ["(moveto blue traj3)", "(pick blue)"]
@@ -188,7 +188,7 @@ def test_on_a_terminal_the_live_view_draws_the_tree(monkeypatch: pytest.MonkeyPa
     screen = StringIO()
     terminal = Console(file=screen, force_terminal=True, width=100, color_system=None)
     monkeypatch.setattr(run_command, "stderr", LazyConsole(stderr=True, rich=terminal))
-    result = runner.invoke(app, ["run", PICK_PLACE, "--disturb", "undo:Pick@11"])
+    result = runner.invoke(app, ["run", PICK_PLACE, "--paper", "--disturb", "undo:Pick@11"])
     assert result.exit_code == 0, result.output
     shown = screen.getvalue()
     assert "tick 17  SUCCESS" in shown
@@ -197,18 +197,23 @@ def test_on_a_terminal_the_live_view_draws_the_tree(monkeypatch: pytest.MonkeyPa
     assert "goal reached" in shown
 
 
-def test_the_example_2_scenario_grows_the_tree_once_and_survives_the_undo(tmp_path: Path) -> None:
+@pytest.mark.parametrize(("scenario", "flags", "blocked", "undone"),
+                         [("example2.dist", [], 5, 15),
+                          ("example2_paper.dist", ["--paper"], 8, 23)])
+def test_the_example_2_scenario_grows_the_tree_once_and_survives_the_undo(
+        tmp_path: Path, scenario: str, flags: list[str], blocked: int, undone: int) -> None:
     trace = tmp_path / "example2.jsonl"
     result = runner.invoke(app, ["run", str(DOMAINS / "pick_place_obstacle.bt"), "--scenario",
-                                 str(DOMAINS.parent / "examples" / "example2.dist"), "--quiet",
-                                 "--trace", str(trace)])
+                                 str(DOMAINS.parent / "examples" / scenario), "--quiet",
+                                 "--trace", str(trace), *flags])
     assert result.exit_code == 0, result.output
     lines = [json.loads(line) for line in trace.read_text().splitlines()]
     grown = {line["tick"]: [e["condition"] for e in line["expansions"]] for line in lines
              if line["expansions"]}
-    assert grown[8] == ["not blocks(_, tau_goal)"]
-    assert max(grown) < 23, "the undo at tick 23 must not expand the tree"
+    assert grown[blocked][0] == "not blocks(_, tau_goal)"
+    assert max(grown) < undone, f"the undo at tick {undone} must not expand the tree"
     assert [d["kind"] for line in lines for d in line["disturbances"]] == ["set", "undo"]
+    assert lines[undone - 1]["facts"]["removed"] == ["holding(cube)"]
 
 
 def test_the_same_seed_gives_the_same_trace_in_any_process(tmp_path: Path) -> None:
@@ -224,7 +229,7 @@ def test_the_same_seed_gives_the_same_trace_in_any_process(tmp_path: Path) -> No
             [sys.executable, "-c", "from btplan.cli import main; main()", "run",
              str(DOMAINS / "pick_place_obstacle.bt"), "--quiet", "--seed", "5",
              "--disturb", "undo@p=0.1", "--disturb", "help@p=0.05",
-             "--scenario", str(DOMAINS.parent / "examples" / "example2.dist"),
+             "--scenario", str(DOMAINS.parent / "examples" / "example2_paper.dist"), "--paper",
              "--trace", str(trace)],
             env={**os.environ, "PYTHONHASHSEED": hash_seed}, capture_output=True, check=True)
         texts.append(trace.read_text())
