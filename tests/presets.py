@@ -10,7 +10,7 @@ from __future__ import annotations
 from btplan.acting.config import ACTING_PLANNER, ActingConfig
 from btplan.planner import PlannerOptions
 
-ALGORITHM_1 = ActingConfig.paper(name="algorithm-1", planner=ACTING_PLANNER)
+ALGORITHM_1 = ActingConfig.algorithm1()
 """Algorithm 1's loop, with btplan's planner options for the expansions."""
 
 

@@ -29,6 +29,8 @@ FORBIDDEN: dict[str, tuple[str, ...]] = {
                        "btplan.sweep"),
     "btplan.worlds": ("btplan.lang", "btplan.planner", "btplan.cli", "btplan.acting",
                       "btplan.sweep"),
+    "btplan.robot": ("btplan.lang", "btplan.planner", "btplan.worlds", "btplan.cli",
+                     "btplan.acting", "btplan.sweep"),
     "btplan.acting.loop": ("btplan.cli", "btplan.lang", "btplan.worlds"),
     "btplan.acting": ("btplan.cli", "btplan.sweep"),
     "btplan.sweep": ("btplan.cli",),

@@ -13,6 +13,9 @@ what users ask for:
   it acts), so an undisturbed run starts no action it will cancel; it retries a
   failing skill instead of giving up after a few ticks; and it adds the departures
   below, each an object of btplan.acting behind a hook of the loop.
+- `ActingConfig.algorithm1()`: Algorithm 1's loop (one expansion per tick, no
+  departure) with btplan's ranking of achievers: what `btplan run` did before the
+  default above, and what the walk-throughs of docs/pybullet.md and docs/yumi.md show.
 - `ActingConfig.simulator()`: the default for worlds whose actions refine values as
   they run (trajectories from where the robot stands): no look-ahead along the later
   preconditions (their trajectories would go stale before they are driven) and no
@@ -95,6 +98,12 @@ class ActingConfig:
                            retry_failed_actions=False), **changes)
 
     @classmethod
+    def algorithm1(cls, **changes: Any) -> ActingConfig:
+        """Algorithm 1's loop, one expansion per tick and no departure, with btplan's
+        planner options for each expansion."""
+        return replace(cls.paper(name="algorithm1", planner=ACTING_PLANNER), **changes)
+
+    @classmethod
     def default(cls, **changes: Any) -> ActingConfig:
         """`btplan run`'s behaviour in a symbolic world (or any world that refines nothing)."""
         return replace(cls(), **changes)
@@ -107,7 +116,7 @@ class ActingConfig:
 
     @classmethod
     def preset(cls, name: str) -> ActingConfig:
-        """A preset by name: `paper`, `default` or `simulator`."""
+        """A preset by name: `paper`, `algorithm1`, `default` or `simulator`."""
         try:
             return PRESETS[name]()
         except KeyError:
@@ -124,5 +133,5 @@ class ActingConfig:
         return replace(self.planner, expansions_per_tick=self.expansions_per_tick)
 
 
-PRESETS = {"paper": ActingConfig.paper, "default": ActingConfig.default,
-           "simulator": ActingConfig.simulator}
+PRESETS = {"paper": ActingConfig.paper, "algorithm1": ActingConfig.algorithm1,
+           "default": ActingConfig.default, "simulator": ActingConfig.simulator}

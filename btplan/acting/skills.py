@@ -25,7 +25,7 @@ from collections.abc import Callable, Iterable, Mapping
 
 from btplan.acting.clock import Clock, SystemClock
 from btplan.bt import FAILURE, RUNNING, SUCCESS, LeafKey, Status
-from btplan.errors import SkillError
+from btplan.errors import SkillError, WorldError
 from btplan.model import ActionTemplate, Atom, GroundAction, Parameter
 from btplan.records import field, record
 from btplan.robot.contract import Capabilities, World, capabilities_of
@@ -72,7 +72,7 @@ class Skills:
         self._raw: object = None
         self._facts: frozenset[Atom] = frozenset()
         refine = getattr(world, "refine", None) if self.capabilities.refines else None
-        self.refine = refine if refine is not None else fallback_refine
+        self._refine = refine if refine is not None else fallback_refine
 
     # --- the tree's side ----------------------------------------------------------------
 
@@ -118,6 +118,14 @@ class Skills:
         if facts != self._facts:
             self._facts = facts
         return self._facts
+
+    def refine(self, template: ActionTemplate, binding: Mapping[str, str],
+               parameter: Parameter) -> list[str]:
+        """The world's refinement, or refinement by constraints for a world without one."""
+        if self._refine is None:
+            raise WorldError(f"{type(self.world).__name__} cannot refine {parameter.name} "
+                             f"of {template.name}: it declares no refine")
+        return list(self._refine(template, binding, parameter))
 
     # --- the loop's side ----------------------------------------------------------------
 
@@ -172,7 +180,10 @@ class Skills:
 
     def _halt(self, key: LeafKey) -> None:
         action = self.running.pop(key)
-        observed = self._effects_hold(action)
+        try:
+            observed = self._effects_hold(action)
+        except Exception:  # noqa: BLE001 (the state cannot be read: halt all the same)
+            observed = False
         try:
             self.world.halt(key)
         except Exception as error:  # noqa: BLE001 (logged; the others must still be halted)
@@ -187,7 +198,7 @@ class Skills:
 
     def _call(self, key: LeafKey, call: Callable[[LeafKey], Status]) -> Status:
         try:
-            status = call(key)
+            status: object = call(key)
         except Exception as error:  # noqa: BLE001 (a robot's error is the action's failure)
             self._error(str(self._action(key)), error)
             self._quietly_halt(key)
@@ -247,7 +258,7 @@ def _atoms(raw: Iterable[object]) -> frozenset[Atom]:
         if isinstance(item, str):
             out.append(Atom(item, ()))
             continue
-        parts = tuple(item)  # type: ignore[call-overload]
+        parts: tuple[object, ...] = tuple(item)  # type: ignore[arg-type]
         if not parts or not isinstance(parts[0], str):
             raise TypeError(f"a fact must be an Atom or a (predicate, *args) tuple, not {item!r}")
         if len(parts) == 2 and isinstance(parts[1], tuple):

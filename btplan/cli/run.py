@@ -103,6 +103,12 @@ def run(
              "it, the default preset (docs/robot.md): the tree grows within the tick until "
              "it runs, a failing skill is retried, and the departures measured in "
              "docs/reactivity.md act.")] = False,
+    preset: Annotated[str | None, typer.Option(
+        "--preset", metavar="NAME",
+        help="How the loop acts, by preset: paper (as --paper), algorithm1 (Algorithm 1's "
+             "loop with btplan's ranking of achievers), default, simulator (the default "
+             "in PyBullet). Default: default, or simulator in PyBullet.",
+        show_default=False)] = None,
     world_spec: Annotated[str | None, typer.Option(
         "--world", metavar="FILE.py:CLASS",
         help="Act in your own robot: a class (or factory) in a Python file or module, "
@@ -131,6 +137,14 @@ def run(
         raise InputError(f"--timeout must be positive, got {timeout:g}")
     if max_ticks is None:
         max_ticks = None if keep else 1000
+    if paper and preset not in (None, "paper"):
+        raise InputError("--paper and --preset name two presets; give one",
+                         Span("--preset", 1, 1))
+    from btplan.acting.config import PRESETS
+
+    if preset is not None and preset not in PRESETS:
+        raise InputError(f"no preset named {preset!r}", Span("--preset", 1, 1),
+                         f"presets: {', '.join(PRESETS)}")
     check_outputs(Output("--trace", trace), Output("--plan-out", plan_out),
                   Output("--record", record))
     task = acting.load(resolve(domain), *([problem] if problem is not None else []))
@@ -148,7 +162,7 @@ def run(
             if sim is not Sim.symbolic or gui or record or fail_prob:
                 raise InputError("--world cannot be combined with --sim, --gui, --record "
                                  "or --fail-prob", Span("--world", 1, 1))
-            world, scene_agents = open_user_world(world_spec, task), []
+            world, scene_agents = open_user_world(world_spec, task), list[Any]()
         else:
             world, scene_agents = open_world(task, sim, scene, seed, gui, record,
                                              probabilities(fail_prob))
@@ -160,7 +174,7 @@ def run(
         try:
             with RunFiles(trace, plan_out) as files:
                 settings = Acting(seed=seed, max_ticks=max_ticks, rate=hz, keep=keep,
-                                  paper=paper, quiet=quiet,
+                                  preset="paper" if paper else preset, quiet=quiet,
                                   world_name=WORLD_NAMES[sim] if world_spec is None
                                   else world_spec)
                 result = _act(task, world, specs, scene_agents, settings, files.add, stop)
@@ -233,7 +247,7 @@ class Acting:
     max_ticks: int | None
     rate: float | None
     keep: bool
-    paper: bool
+    preset: str | None
     quiet: bool
     world_name: str
 
@@ -245,7 +259,8 @@ def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Ag
     from btplan import acting
     from btplan.acting.config import ActingConfig
 
-    config = ActingConfig.paper() if settings.paper else None  # None: the world's default
+    # None: the world's default (btplan.acting.online.default_config)
+    config = ActingConfig.preset(settings.preset) if settings.preset else None
 
     def run_with(view: Callable[[Node, Mapping[int, Status], TickRecord], None] | None
                  ) -> acting.RunOutcome:

@@ -15,7 +15,7 @@ from btplan.cli import app
 def test_the_youbot_run_reaches_the_goal_and_writes_the_executed_plan(tmp_path: Path) -> None:
     plan = tmp_path / "plan.txt"
     result = CliRunner().invoke(app, ["run", str(YOUBOT), "--sim", "pybullet", "--quiet",
-                                      "--plan-out", str(plan)])
+                                      "--preset", "algorithm1", "--plan-out", str(plan)])
     assert result.exit_code == 0, result.output
     lines = plan.read_text().splitlines()
     assert lines[:3] == ["(moveto green traj1)", "(pick green)", "(drop green)"]

@@ -81,8 +81,8 @@ def test_an_obstacle_put_back_after_it_was_cleared_is_cleared_again(tmp_path: Pa
     """Through the CLI, as a user runs it; the run depends on the seed (OMPL's paths)."""
     plan, trace = tmp_path / "plan.txt", tmp_path / "trace.jsonl"
     done = subprocess.run([sys.executable, "-m", "btplan", "run", str(YOUBOT), "--sim",
-                           "pybullet", "--quiet", "--seed", "0", "--scenario",
-                           write_scene(tmp_path, PUT_BACK), "--plan-out", str(plan),
+                           "pybullet", "--quiet", "--seed", "0", "--preset", "algorithm1",
+                           "--scenario", write_scene(tmp_path, PUT_BACK), "--plan-out", str(plan),
                            "--trace", str(trace)],
                           capture_output=True, text=True, check=False)
     assert done.returncode == 0, done.stdout + done.stderr

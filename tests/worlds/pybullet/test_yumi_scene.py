@@ -15,6 +15,7 @@ import pytest
 from typer.testing import CliRunner
 
 from btplan.acting.offline import load
+from btplan.acting.config import ActingConfig
 from btplan.acting.online import RunOutcome, run
 from btplan.cli import app
 from btplan.model import Task
@@ -89,7 +90,9 @@ def act(task: Task, opened: list[AssemblyWorld], scene: str | None = None,
     world = open_world(task, scene)
     assert isinstance(world, AssemblyWorld)
     opened.append(world)
-    return run(task, world=world, agents=world.scene_agents(), max_ticks=max_ticks)
+    # Algorithm 1's loop, as docs/yumi.md walks through these scenes.
+    return run(task, world=world, agents=world.scene_agents(), max_ticks=max_ticks,
+               config=ActingConfig.algorithm1())
 
 
 def executed(result: RunOutcome) -> list[str]:
@@ -185,7 +188,7 @@ def test_a_board_knocked_off_the_table_ends_the_run_with_exit_1_naming_it(
     both = tmp_path / "three_parts.bt"
     both.write_text(domain + (tmp_path / "three.bt").read_text())
     plan = tmp_path / "plan.txt"
-    result = CliRunner().invoke(app, ["run", str(both), "--sim", "pybullet", "--quiet",
+    result = CliRunner().invoke(app, ["run", str(both), "--sim", "pybullet", "--quiet", "--preset", "algorithm1",
                                       "--scenario", scene_with(tmp_path, knock("floor")),
                                       "--plan-out", str(plan)])
     assert result.exit_code == 1, result.output
@@ -273,7 +276,7 @@ def test_a_part_of_the_problem_missing_from_the_scene_is_named(tmp_path: Path) -
 @pytest.mark.slow
 def test_record_films_both_arms_from_the_front(tmp_path: Path) -> None:
     movie = tmp_path / "start.gif"
-    result = CliRunner().invoke(app, ["run", str(YUMI), "--sim", "pybullet", "--quiet",
+    result = CliRunner().invoke(app, ["run", str(YUMI), "--sim", "pybullet", "--quiet", "--preset", "algorithm1",
                                       "--record", str(movie), "--max-ticks", "12"])
     assert result.exit_code == 1  # the phone is not built in 12 ticks; the movie is still saved
     from PIL import Image
