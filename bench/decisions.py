@@ -18,12 +18,11 @@ from __future__ import annotations
 import argparse
 from collections import Counter, defaultdict
 from collections.abc import Sequence
-from dataclasses import replace
 from typing import Any
 
 from btplan import acting
 from btplan.acting.baselines import run_baseline
-from btplan.acting.extended import EXPANSIONS
+from btplan.acting.config import ActingConfig
 from btplan.sweep.runs import Job, prepared
 from btplan.worlds.symbolic import SymbolicWorld
 
@@ -51,8 +50,9 @@ def decide(job: Job, rate: float, seeds: range) -> dict[str, Decisions]:
     changed = {e.predicate for a in task.domain.actions for e in a.effects}
     static = frozenset(str(a) for a in task.initial_state if a.predicate not in changed)
     seen: dict[str, Decisions] = {m: defaultdict(Counter) for m in ("btplan", "replan")}
-    options = replace(acting.ACTING_OPTIONS, stall_limit=max_ticks,
-                      expansions_per_tick=EXPANSIONS)
+    config = ActingConfig.algorithm1(name="look-ahead", expansions_per_tick=64,
+                                     expand_later_preconditions=True,
+                                     skip_moved_while_held=True, retry_failed_actions=True)
     for seed in seeds:
         for method, decisions in seen.items():
             world = SymbolicWorld(task, seed=seed)
@@ -62,7 +62,7 @@ def decide(job: Job, rate: float, seeds: range) -> dict[str, Decisions]:
                 run_baseline(task, world, agents, method, max_ticks)
             else:
                 acting.run(task, agents=agents, world=world, seed=seed, max_ticks=max_ticks,
-                           options=options, look_ahead=True, scope_moves=True)
+                           config=config)
     return seen
 
 
