@@ -324,11 +324,15 @@ def _arity(name: str, function: Callable[..., object], params: list[str],
         signature.bind(*params, **({"stop": None} if threaded else {}))
     except TypeError:
         takes = ", ".join(params + (["stop"] if threaded else []))
-        yield f"{_qualname(function)}{signature} cannot take {name}({takes})"
+        yield f"{_shown(function, signature)} cannot take {name}({takes})"
 
 
-def _qualname(function: Callable[..., object]) -> str:
-    return str(getattr(function, "__qualname__", None) or getattr(function, "__name__", "it"))
+def _shown(function: Callable[..., object], signature: inspect.Signature) -> str:
+    """`Robot.pick(o)`: where a function is written and its parameters, without types."""
+    name = str(getattr(function, "__qualname__", None) or getattr(function, "__name__", "it"))
+    stars = {inspect.Parameter.VAR_POSITIONAL: "*", inspect.Parameter.VAR_KEYWORD: "**"}
+    shown = ", ".join(stars.get(p.kind, "") + p.name for p in signature.parameters.values())
+    return f"{name.rpartition('<locals>.')[2]}({shown})"
 
 
 def _where_defined(cls: type) -> tuple[Span | None, str | None]:
