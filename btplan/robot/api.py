@@ -330,7 +330,8 @@ def _arity(name: str, function: Callable[..., object], params: list[str],
 def _shown(function: Callable[..., object], signature: inspect.Signature) -> str:
     """`Robot.pick(o)`: where a function is written and its parameters, without types."""
     name = str(getattr(function, "__qualname__", None) or getattr(function, "__name__", "it"))
-    stars = {inspect.Parameter.VAR_POSITIONAL: "*", inspect.Parameter.VAR_KEYWORD: "**"}
+    stars: dict[object, str] = {inspect.Parameter.VAR_POSITIONAL: "*",
+                                inspect.Parameter.VAR_KEYWORD: "**"}
     shown = ", ".join(stars.get(p.kind, "") + p.name for p in signature.parameters.values())
     return f"{name.rpartition('<locals>.')[2]}({shown})"
 
