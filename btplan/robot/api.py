@@ -199,6 +199,8 @@ class Robot:
         name, args = key
         function = self._conditions.get(name)
         if function is None:
+            if name == EQUALITY:  # as the symbolic world answers it
+                return len(args) == 2 and args[0] == args[1]
             if WILDCARD in args:
                 return any(a.predicate == name and len(a.args) == len(args) and all(
                     x in (WILDCARD, y) for x, y in zip(args, a.args)) for a in self._static)
