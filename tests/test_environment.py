@@ -44,15 +44,15 @@ def foreign_modules() -> list[str]:
 
 
 def declared_requirements() -> list[str]:
-    """Distribution names that the README's install (`pip install -e '.[dev]'`) asks for.
+    """Distribution names that the README's test install (`pip install -e '.[test]'`) asks for.
 
-    The core dependencies and every extra that `dev` names, followed through extras that
-    name other extras; an extra outside `dev` (a large benchmark peer) is not installed
-    by the README and is not checked.
+    The core dependencies and every extra that `test` names, followed through extras that
+    name other extras; an extra outside `test` (a large benchmark peer, the type checker)
+    is not installed by the README and is not checked.
     """
     project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
     extras: dict[str, list[str]] = project.get("optional-dependencies", {})
-    specs, todo, seen = list(project["dependencies"]), ["dev"], set()
+    specs, todo, seen = list(project["dependencies"]), ["test"], set()
     while todo:
         extra = todo.pop()
         if extra in seen:
