@@ -18,6 +18,7 @@ EXPECTED = {
                          "tick 5: undid Pick(cube)"],
     "export_xml.py": ['BTCPP_format="4"', "<ReactiveFallback", '<Place o="sphere" l="aside"/>',
                       '<blocks o="_" t="tau_goal"/>', '<Action ID="Place">'],
+    "my_robot.py": ["reached: True", "disturbed: @"],
     "custom_agent.py": ["reached: True",
                         "grew at not blocks(_, tau_goal) with Place(sphere, aside)",
                         "grew at holding(sphere) with Pick(sphere)"],
@@ -31,10 +32,15 @@ def run_example(name: str, *args: str) -> str:
     return done.stdout
 
 
+WHOLE = {"my_robot.py"}
+"""Complete programs a user starts from (a whole fake robot); the others show one use of
+the API each, in under 40 lines."""
+
+
 def test_every_example_is_listed_and_short() -> None:
     scripts = sorted(p.name for p in EXAMPLES.glob("*.py"))
     assert scripts == sorted(EXPECTED)
-    for name in scripts:
+    for name in sorted(set(scripts) - WHOLE):
         assert len((EXAMPLES / name).read_text().splitlines()) < 40, name
 
 
