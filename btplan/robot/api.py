@@ -256,7 +256,10 @@ class Robot:
             running = self._running.pop(key, None)
         if running is None:
             return
-        self._stopping.setdefault(key, []).append(running)
+        # Only the loop's way out asks `stopped`: forget the halted skills that have come
+        # to rest since, so that a long run does not keep every one it ever halted.
+        earlier = [r for r in self._stopping.get(key, ()) if not r.stopped()]
+        self._stopping[key] = [*earlier, running]
         running.cancel()
 
     def stopped(self, key: LeafKey) -> bool:
