@@ -18,9 +18,9 @@ and refined values of the template's parameters, in order, and start a skill
 methods instead, with the `condition` and `action` decorators of this module.
 
 Before the run, `bind(task)` checks the robot against the domain: every action
-template and every predicate that actions change must be bound (a clear error names
-each missing one, with close matches); predicates no action changes are answered from
-the problem. A refined parameter is refined by a `refiner` when one is given, else by
+template and every predicate that actions change must be bound, to a function that
+takes their arguments (one error names every misfit, with close matches, at the
+subclass's `class` line); predicates no action changes are answered from the problem. A refined parameter is refined by a `refiner` when one is given, else by
 the objects of its type that its `where` constraints hold for.
 """
 
