@@ -352,7 +352,10 @@ def _where_defined(cls: type) -> tuple[Span | None, str | None]:
         return None, None
     if path is None:
         return None, None
-    shown = os.path.relpath(path)
+    try:
+        shown = os.path.relpath(path)
+    except ValueError:  # another drive
+        shown = path
     if shown.startswith(".."):
         shown = path
     text = next((line for line in lines if line.lstrip().startswith("class ")), lines[0])
