@@ -163,6 +163,8 @@ def run_task(
                 reached, reason = _drive(loop, pacer, recorder, max_ticks, keep)
             except Stop:
                 reason, interrupted = "interrupted", True
+                if keep and recorder.goal_held:  # a kept run stopped with the goal holding
+                    reached, reason = True, "interrupted with the goal holding"
             except (PlanningError, SkillError) as error:
                 # The tree cannot grow any further (no achiever, going round in circles),
                 # or a skill raised and the run stops on it: the run ends as not reached,
@@ -206,7 +208,7 @@ def _drive(loop: BlendedLoop, pacer: Pacer, recorder: Recorder, max_ticks: int |
         now = report.status is SUCCESS and loop.goal_holds()
         goal = "reached" if now and not held else "lost" if held and not now else ""
         held = now
-        recorder.after(report, goal)
+        recorder.after(report, goal, now)
         if now and not keep:
             return True, "goal reached"
     if keep and held:

@@ -41,14 +41,19 @@ class Recorder:
         self._ids: dict[str, Node] = {}
         self._disturbances: list[Disturbance] = []
         self._last_tick = 0
+        self.goal_held = False
+        """Whether the goal held after the last tick recorded."""
 
     def before(self, tick: int) -> None:
         """Let the agents act before `tick`."""
         self._disturbances = act_all(self.agents, self.world, tick)
         self._ids = {f"n{i}": node for i, node in enumerate(self.loop.tree.nodes())}
 
-    def after(self, report: TickReport, goal: str = "") -> None:
-        """Record the tick the loop just made."""
+    def after(self, report: TickReport, goal: str = "", held: bool | None = None) -> None:
+        """Record the tick the loop just made (`goal`: "reached" or "lost" on a change;
+        `held`: whether the goal holds after it)."""
+        if held is not None:
+            self.goal_held = held
         traces = list(self.tree_recorder.traces)
         self.tree_recorder.traces.clear()
         nodes = traces[-1].nodes if traces else ()

@@ -14,7 +14,8 @@ tree and the world and keeps the rules of btplan.robot.contract:
   finished with its effects observed, not as cut short (asynchronous skills report
   SUCCESS after the world already shows their work);
 - `facts()` accepts any iterable of atoms or `(predicate, *args)` tuples and hands the
-  planner one frozenset of atoms, the same object while the state is the same;
+  planner one frozenset of atoms, the same object while the state is the same; a world
+  whose `facts()` raises cannot be acted in, and the run ends with a WorldError;
 - `halt_all` stops every running skill on every way out of a run, waits a bounded time
   for those that say when they stop, and names those that did not.
 """
@@ -25,7 +26,7 @@ from collections.abc import Callable, Iterable, Mapping
 
 from btplan.acting.clock import Clock, SystemClock
 from btplan.bt import FAILURE, RUNNING, SUCCESS, LeafKey, Status
-from btplan.errors import SkillError, WorldError
+from btplan.errors import BtplanError, SkillError, WorldError
 from btplan.model import ActionTemplate, Atom, GroundAction, Parameter
 from btplan.records import field, record
 from btplan.robot.contract import Capabilities, World, capabilities_of
@@ -110,10 +111,16 @@ class Skills:
 
     def facts(self) -> frozenset[Atom]:
         """The state as one frozenset of atoms; the same object while it is unchanged."""
-        raw = self.world.facts()
-        if raw is self._raw:
-            return self._facts
-        facts = _atoms(raw)
+        try:
+            raw = self.world.facts()
+            if raw is self._raw and isinstance(raw, frozenset):
+                return self._facts  # an immutable state, unchanged
+            facts = _atoms(raw)
+        except BtplanError:
+            raise
+        except Exception as error:  # a robot that cannot say its state: nothing to act on
+            raise WorldError(f"{type(self.world).__name__}.facts() raised "
+                             f"{type(error).__name__}: {error}") from error
         self._raw = raw
         if facts != self._facts:
             self._facts = facts

@@ -345,7 +345,9 @@ def summary_table(result: acting.RunOutcome) -> Table:
     table = Table(title="btplan run", show_header=False, box=None)
     table.add_column(style="bold")
     table.add_column(overflow="fold")
-    if result.reached:
+    if result.reached and result.interrupted:
+        outcome = "[green]goal holding[/] when the run was stopped"
+    elif result.reached:
         outcome = "[green]goal reached[/]"
     elif result.interrupted and result.reason == "interrupted":
         outcome = "[yellow]interrupted[/] before the goal was reached"

@@ -14,8 +14,10 @@ real robot behind its drivers. The loop asks it five things, all keyed by
 
 A world keeps no logs: the loop records what started, finished, was halted or failed,
 and calls `start`/`step`/`halt` at most once at a time per grounded action, however
-many leaves name it (btplan.acting.skills). An exception from any call is that
-action's FAILURE (or that condition's false), with its message in the trace.
+many leaves name it (btplan.acting.skills). An exception from `check`, `start`,
+`step` or `halt` is that action's FAILURE (or that condition's false), with its message
+in the trace; one from `facts()` ends the run (WorldError): nothing can be planned
+without the state.
 
 Everything else is optional and declared, never probed: a world lists what more it
 offers in `capabilities` (a `Capabilities` record), and the loop uses exactly that.
@@ -93,7 +95,8 @@ class Capabilities:
     - `dead_ends`: `dead_ends() -> list[str]`, why the robot may be stuck, for messages.
     - `reports_stopped`: `stopped(key) -> bool`, whether a halted action has come to
       rest; the loop waits for it, a bounded time, on every way out of a run.
-    - `closes`: `close()`, called once when the run ends, however it ends.
+    - `closes`: `close()`, called once when `btplan run` ends, however it ends (the CLI
+      made the world, so it closes it; `btplan.run` leaves a world it was given open).
     """
 
     refines: bool = False

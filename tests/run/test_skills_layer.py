@@ -135,3 +135,39 @@ def test_a_long_run_keeps_counts_not_lists() -> None:
     assert not outcome.reached and total.ticks == ticks
     assert len(total.failed) == LISTED < total.count("failed")
     assert len(outcome.records) <= 10_000
+
+
+def test_a_kept_run_stopped_with_the_goal_holding_counts_as_reached() -> None:
+    asked = iter([False] * 12 + [True])
+    outcome = btplan.run(TASK, keep=True, max_ticks=None, stop=lambda: next(asked))
+    assert outcome.interrupted and outcome.reached and outcome.ticks == 12
+
+
+class Mutable(SymbolicWorld):
+    """A world that hands out the same set object, changed in place."""
+
+    def __init__(self, task: object) -> None:
+        super().__init__(task)  # type: ignore[arg-type]
+        self.shared: set[object] = set()
+
+    def facts(self) -> frozenset:  # type: ignore[type-arg, override]
+        self.shared.clear()
+        self.shared.update(super().facts())
+        return self.shared  # type: ignore[return-value]
+
+
+def test_a_state_changed_in_place_is_read_again() -> None:
+    assert btplan.run(TASK, world=Mutable(TASK)).reached
+
+
+def test_a_world_whose_state_cannot_be_read_ends_the_run_with_a_world_error() -> None:
+    import pytest
+
+    from btplan.errors import WorldError
+
+    class Mute(SymbolicWorld):
+        def facts(self) -> frozenset:  # type: ignore[type-arg]
+            raise OSError("the state topic is gone")
+
+    with pytest.raises(WorldError, match="Mute.facts.. raised OSError: the state topic is gone"):
+        btplan.run(TASK, world=Mute(TASK))
