@@ -21,7 +21,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from btplan import acting
-from btplan.acting.baselines import run_baseline
+from btplan.baselines import run_baseline
 from btplan.acting.config import ActingConfig
 from btplan.sweep.runs import Job, prepared
 from btplan.worlds.symbolic import SymbolicWorld

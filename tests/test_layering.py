@@ -32,7 +32,9 @@ FORBIDDEN: dict[str, tuple[str, ...]] = {
     "btplan.robot": ("btplan.lang", "btplan.planner", "btplan.worlds", "btplan.cli",
                      "btplan.acting", "btplan.sweep"),
     "btplan.acting.loop": ("btplan.cli", "btplan.lang", "btplan.worlds"),
-    "btplan.acting": ("btplan.cli", "btplan.sweep"),
+    "btplan.acting": ("btplan.cli", "btplan.sweep", "btplan.baselines"),
+    "btplan.baselines": ("btplan.cli", "btplan.sweep", "btplan.acting.loop",
+                         "btplan.acting.offline", "btplan.acting.online"),
     "btplan.sweep": ("btplan.cli",),
 }
 ALLOWED_SELF = {"btplan.model", "btplan.errors"}

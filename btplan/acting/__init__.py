@@ -19,15 +19,16 @@ TYPE_CHECKING = False
 if TYPE_CHECKING:
     from typing import Any
 
-    from btplan.acting.attempt import PlanResult, PlanStats
+    from btplan.acting.offline import PlanResult, PlanStats
     from btplan.acting.clock import FakeClock
     from btplan.acting.config import ActingConfig
     from btplan.acting.loop import BlendedLoop, Expansion, TickReport
     from btplan.acting.offline import load, plan
     from btplan.acting.online import ACTING_OPTIONS, RunOutcome, run, task_models
 
-_HOMES = {"ActingConfig": "config", "FakeClock": "clock", "BlendedLoop": "loop", "Expansion": "loop", "TickReport": "loop",
-          "PlanResult": "attempt", "PlanStats": "attempt", "load": "offline", "plan": "offline",
+_HOMES = {"ActingConfig": "config", "FakeClock": "clock", "BlendedLoop": "loop",
+          "Expansion": "loop", "TickReport": "loop",
+          "PlanResult": "offline", "PlanStats": "offline", "load": "offline", "plan": "offline",
           "ACTING_OPTIONS": "online", "RunOutcome": "online", "run": "online",
           "task_models": "online"}
 

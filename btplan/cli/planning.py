@@ -22,7 +22,7 @@ from btplan.records import replace
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from btplan.acting.attempt import PlanResult, PlanStats
+    from btplan.acting.offline.attempt import PlanResult, PlanStats
     from btplan.acting.loop import Expansion
     from btplan.bt import BehaviorTree
 

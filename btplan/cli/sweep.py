@@ -178,7 +178,7 @@ def sweep(
         TimeRemainingColumn,
     )
 
-    from btplan.acting.baselines import BASELINES
+    from btplan.baselines import BASELINES
     from btplan.acting.strips import require_pyperplan
     from btplan.shipped import resolve
     from btplan.sweep import explain, output, pool

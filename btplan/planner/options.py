@@ -42,7 +42,7 @@ class PlannerOptions:
     as published spends a tick of the world per expansion, which a sequential planner,
     planning before it acts, does not. `improve_plan`: offline planning shortens the
     executed plan once found (btplan/planner/improve.py) and puts the shorter plan
-    ahead of the tree (btplan/acting/improved.py). `PlannerOptions.paper()` turns every
+    ahead of the tree (btplan/acting/offline/improved.py). `PlannerOptions.paper()` turns every
     departure from the paper off, for comparison.
     """
 

@@ -5,7 +5,7 @@ or every achiever of it is circular, the paper stops. btplan then searches, from
 state the tree reached, for a plan that makes the condition true while keeping what
 the enclosing sequences already hold, and btplan/planner/rescue.py turns that plan
 into a reactive subtree; when backchaining fails as a whole, the same search plans the
-whole goal (btplan/acting/offline.py). The search sees every grounding of the relaxed
+whole goal (btplan/acting/offline/planning.py). The search sees every grounding of the relaxed
 model, so it is only bounded by its budget of states; it is the exception, and the
 summary counts it.
 

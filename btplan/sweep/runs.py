@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from btplan import acting
-from btplan.acting.baselines import BASELINES, run_baseline
+from btplan.baselines import BASELINES, run_baseline
 from btplan.acting.config import ActingConfig
 from btplan.errors import BtplanError, InputError, Span
 from btplan.model import Task

@@ -1,4 +1,4 @@
-"""The improved plan in the tree (btplan/acting/improved.py): what `plan` returns executes
+"""The improved plan in the tree (btplan/acting/offline/improved.py): what `plan` returns executes
 the shorter plan from the initial state, the steps shared conditions change nothing of
 which step runs, and `--paper` and `improve=False` leave the backchained result as it was."""
 
@@ -7,7 +7,7 @@ from __future__ import annotations
 import random
 from pathlib import Path
 
-from btplan.acting.improved import budget, plan_first
+from btplan.acting.offline.improved import budget, plan_first
 from btplan.acting.offline import load, plan
 from btplan.bt import RUNNING, BehaviorTree, Fallback, Status
 from btplan.bt import Sequence as SequenceNode

@@ -8,7 +8,7 @@ from typing import Any
 import pytest
 
 from btplan.acting import load
-from btplan.acting.baselines import BaselineOutcome, run_baseline
+from btplan.baselines import BaselineOutcome, run_baseline
 from btplan.worlds.agents import agents_from_specs
 from btplan.worlds.disturb import parse_spec
 from btplan.worlds.symbolic import SymbolicWorld

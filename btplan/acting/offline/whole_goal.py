@@ -1,5 +1,5 @@
 """The last resort for the whole task: a plan for the whole goal, searched for from the
-initial state, for btplan/acting/offline.py to put behind the goal tree.
+initial state, for btplan/acting/offline/planning.py to put behind the goal tree.
 
 The search is begun once and resumed: offline planning gives it a slice of the time
 as soon as backchaining's first attempt has failed (backchaining is visibly stuck, and

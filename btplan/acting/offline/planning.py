@@ -18,9 +18,9 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
-from btplan.acting.attempt import PlanResult, Run, SearchFound, attempt
+from btplan.acting.offline.attempt import PlanResult, Run, SearchFound, attempt
 from btplan.acting.loop import Expansion
-from btplan.acting.whole_goal import EarlySlice, SearchTurns, WholeGoalSearch
+from btplan.acting.offline.whole_goal import EarlySlice, SearchTurns, WholeGoalSearch
 from btplan.bt import BehaviorTree
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
@@ -30,21 +30,7 @@ from btplan.records import replace
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from typing import Any
-
-    from btplan.acting.online import RunOutcome as RunOutcome  # noqa: PLC0414
-    from btplan.acting.online import run as run  # noqa: PLC0414
     from btplan.planner.backjump import Choice
-
-
-def __getattr__(name: str) -> Any:
-    """Acting with disturbances (`btplan.run`) lives in btplan.acting.online and is
-    re-exported here, imported on first use: planning does not need it."""
-    if name in ("run", "RunOutcome"):
-        from btplan.acting import online
-
-        return getattr(online, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 DEFAULT_MAX_TICKS = 100_000
@@ -82,7 +68,7 @@ def plan(
     BACKCHAIN_SHARE of it). Explicit options run as they are.
 
     With `improve` (and the options' `improve_plan`), the executed plan is then made
-    shorter within a share of the time (btplan/acting/improved.py), and the tree runs
+    shorter within a share of the time (btplan/acting/offline/improved.py), and the tree runs
     the shorter plan; `say` hears what that step is doing.
 
     Raises a PlanningError (NoAchieverError, UnresolvableConflictError,
@@ -203,7 +189,7 @@ def _improve(run: Run, result: PlanResult, say: Callable[[str], None] | None) ->
         return replace(result, stats=replace(result.stats, removed=0, shortest=True,
                                              improve_seconds=now - started,
                                              seconds=now - run.started))
-    from btplan.acting.improved import budget, improve_executed
+    from btplan.acting.offline.improved import budget, improve_executed
 
     seconds = budget(run.started, started, run.deadline)
     if seconds <= 0:
