@@ -32,6 +32,10 @@ FORBIDDEN: dict[str, tuple[str, ...]] = {
     "btplan.robot": ("btplan.lang", "btplan.planner", "btplan.worlds", "btplan.cli",
                      "btplan.acting", "btplan.sweep"),
     "btplan.acting.loop": ("btplan.cli", "btplan.lang", "btplan.worlds"),
+    # Departures see the loop through btplan.acting.state.LoopState and its hooks only.
+    "btplan.acting.departures": ("btplan.acting.loop", "btplan.acting.online",
+                                 "btplan.acting.offline", "btplan.cli", "btplan.worlds"),
+    "btplan.acting.hooks": ("btplan.acting.loop", "btplan.acting.departures"),
     "btplan.acting": ("btplan.cli", "btplan.sweep", "btplan.baselines"),
     "btplan.baselines": ("btplan.cli", "btplan.sweep", "btplan.acting.loop",
                          "btplan.acting.offline", "btplan.acting.online"),

@@ -56,17 +56,17 @@ class ActingConfig:
     - `expand_later_preconditions`: when an action's first false precondition is
       expanded, expand its later false ones in the same tick, and expand a condition
       ahead of the running action as soon as an outside change breaks it
-      (btplan.acting.ahead, btplan.acting.watch).
+      (btplan.acting.departures.ahead, btplan.acting.departures.watch).
     - `expand_when_forced`: expand a later false precondition early only when its
       achiever would make the robot give up what it is about to hold (a doorway to clear
       before the cube is picked; implied by `expand_later_preconditions`).
     - `skip_moved_while_held`: skip a subtree that conflict resolution moved in front
-      of an achiever while that achiever's condition holds (btplan.acting.scope).
+      of an achiever while that achiever's condition holds (btplan.acting.departures.scope).
     - `credit_other_goals`: rank first the achievers that make other goals true, and
-      set up the step of another goal an achiever enables (btplan.acting.credit,
-      btplan.acting.prepare).
+      set up the step of another goal an achiever enables (btplan.acting.departures.credit,
+      btplan.acting.departures.prepare).
     - `finish_halted_action`: finish an action the tree turned away from when it does
-      not interfere with the one started instead (btplan.acting.finish).
+      not interfere with the one started instead (btplan.acting.departures.finish).
     - `retry_failed_actions`: a skill that fails with nothing left to expand is tried
       again on the next tick until the tick limit; off, the run ends after
       `planner.stall_limit` such ticks in a row.

@@ -70,8 +70,8 @@ def loop_reason(expansions: int, skills: Skills) -> str:
     """The world came back to a state it was in, under the same tree."""
     recent = [str(a) for a in skills.executed[-6:]]
     tail = f"; last actions: {', '.join(recent)}" if recent else ""
-    # a world may know what it cannot do
-    found = skills.world.dead_ends() if skills.capabilities.dead_ends else []  # type: ignore[attr-defined]
+    world = skills.world  # a world may know what it cannot do
+    found = world.dead_ends() if skills.capabilities.dead_ends else []  # type: ignore[attr-defined]
     known = f"; {'; '.join(found)}" if found else ""
     return (
         "the world came back to an earlier state with no new expansion "

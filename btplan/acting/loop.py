@@ -1,40 +1,32 @@
 """Algorithm 1 as an acting loop: tick the tree against a world, expand it when it fails.
 
-The tree is never rebuilt: it starts as the goal conditions and only grows, one atomic
-BT per failing tick, with conflicts resolved right after each expansion. All world
-access of planning lives in this package; the planner steps in btplan.planner are plain
-functions. Here are the tick and ExpandTree with conflict resolution; the other parts
-of the loop have modules of their own (btplan.acting.state lists them).
+The tree is never rebuilt: it starts as the goal conditions and only grows, an atomic
+BT at a time, with conflicts resolved right after each expansion. The loop calls the
+paper's steps by name: `get_condition_to_expand` (Algorithm 3), `expand_tree`
+(Algorithm 2) and `increase_priority` (Algorithm 1, lines 11-12). Everything beyond
+the published algorithm is a departure behind the hooks of btplan.acting.hooks
+(btplan.acting.departures); with none, this is Algorithm 1. The robot is reached
+through `Skills` (btplan.acting.skills), which keeps the logs of its actions.
 """
 
 from __future__ import annotations
 
 import time
 from collections import Counter
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 
-from btplan.acting.ahead import later_false
 from btplan.acting.choice import achievers_for
 from btplan.acting.config import ActingConfig
+from btplan.acting.departures import departures_for
+from btplan.acting.departures.ahead import attached
+from btplan.acting.departures.search import adopt_plan
 from btplan.acting.diagnosis import failing_actions, loop_reason, most_expanded, no_achiever_reason
-from btplan.acting.early import expand_ahead, expand_broken, expand_if_forced
-from btplan.acting.finish import FinishFirst
-from btplan.acting.prepare import give_up, prepare_before
+from btplan.acting.early import EarlyExpansions
+from btplan.acting.hooks import Departure, Hooks
 from btplan.acting.progress import Circles
-from btplan.acting.protect import protect
-from btplan.acting.regrow import reexpand
-from btplan.acting.scope import lineage, scope_moved
-from btplan.acting.searched import adopt_plan, search_stuck
 from btplan.acting.skills import Skills
 from btplan.acting.state import Expansion, RunResult, TickReport
-from btplan.bt import (
-    FAILURE,
-    SUCCESS,
-    BehaviorTree,
-    Fallback,
-    LeafKey,
-    Node,
-)
+from btplan.bt import FAILURE, SUCCESS, BehaviorTree, Fallback, LeafKey, Node
 from btplan.errors import (
     BudgetExceededError,
     NoAchieverError,
@@ -57,18 +49,18 @@ from btplan.planner.achievers import guards
 from btplan.planner.agenda import goal_agenda, state_orders
 from btplan.planner.expand import goal_check, guard_nodes
 from btplan.planner.lookahead import closest_first
-from btplan.robot.contract import World
+from btplan.planner.priority import Resolution
+from btplan.robot.contract import World, capabilities_of
 from btplan.robot.refine import ConstraintRefiner
 
 TYPE_CHECKING = False
-if TYPE_CHECKING:  # backjump (blame), protect (an option) and rescue: when first used
+if TYPE_CHECKING:  # backjump (blame): when first used
     from btplan.planner.backjump import Choice
-    from btplan.planner.rescue import Rescuer
 
 __all__ = ["BlendedLoop", "Expansion", "RunResult", "TickReport"]
 
 STUCK_EXPANSIONS = 8
-"""Expansions of one condition after which it counts as stuck (for `search_stuck`)."""
+"""Expansions of one condition after which it counts as stuck (`Hooks.when_stuck`)."""
 
 ROUND_EXPANSIONS = 40
 """Expansions of one condition after which the attempt stops: it goes round, and the
@@ -83,18 +75,8 @@ _NO_DEPARTURES = ActingConfig.paper()
 """The departures of a loop given no configuration: none (offline planning's)."""
 
 
-def _unexpand(tree: BehaviorTree, subtree: Fallback, condition: Node) -> None:
-    """Undo ExpandTree: put the condition back where its atomic BT stands."""
-    subtree.remove(condition)
-    parent = subtree.parent
-    if parent is None:
-        tree.root = condition
-        return
-    parent.replace(subtree, condition)
-
-
 class BlendedLoop:
-    """Plans and acts at once (the paper's Algorithm 1) against any PlanningWorld.
+    """Plans and acts at once (the paper's Algorithm 1) against any world.
 
     `tick()` ticks once; on FAILURE it expands the first failed condition found
     breadth first (Algorithm 3), substitutes its atomic BT (Algorithm 2) and moves it
@@ -102,8 +84,7 @@ class BlendedLoop:
     the next failed one; if none has achievers, NoAchieverError names them. When the
     world comes back to a state it was in, with no expansion in between and no
     outside change, the loop is going round in circles: NoProgressError
-    (btplan.acting.progress). With `look_ahead`, some conditions are expanded before a
-    tick reaches them (btplan.acting.early).
+    (btplan.acting.progress).
     """
 
     def __init__(
@@ -114,73 +95,65 @@ class BlendedLoop:
         like: AchieverIndex | None = None,
         banned: frozenset[Choice] = frozenset(),
         config: ActingConfig | None = None,
+        deadline: float | None = None,
+        departures: list[Departure] | None = None,
     ) -> None:
         """`options`: the planner's (by default `config.loop_planner`); `like`: an index of
         the same task to share models with; `banned`: (condition, action) choices never
-        used (btplan.planner.backjump); `config`: which departures from Algorithm 1 act
-        (btplan.acting.config; none when not given, as offline planning runs it).
-
-        The world is reached through `Skills` (btplan.acting.skills): the loop keeps the
-        logs of the robot's actions and runs each grounded action at most once at a time."""
-        departures = config or _NO_DEPARTURES
-        self.config = departures
-        look_ahead = departures.expand_later_preconditions
-        self.banned = banned
-        self.culprits: list[Choice] = []
-        """When planning stopped: the achiever choices to give up first (backjump.py)."""
+        used (btplan.planner.backjump); `config`: which departures act (none when not
+        given, as offline planning runs it); `deadline`: a time.perf_counter() value the
+        last-resort search must not run past; `departures`: instead of those `config`
+        and `options` switch on (btplan.acting.departures.departures_for)."""
+        self.config = config or _NO_DEPARTURES
         self.task = task
-        self.look_ahead = look_ahead
-        self.scope_moves = departures.skip_moved_while_held
-        self.goal_credit = departures.credit_other_goals
-        self.optional: set[Node] = set()
-        """Conditions added before an achiever for another goal (btplan.acting.prepare)."""
-        self.relaxed_plans: object | None = None
-        """The relaxed plans of the index's relaxed model, kept once prepare.py asked."""
-        self.ahead: list[Node] = []
-        self.look_deeper = departures.expand_when_forced
-        self.finish_first = departures.finish_halted_action
-        self.forcing: list[Node] = []
-        """Later false preconditions expanded now only if their achiever forces (ahead.py)."""
-        self.options = options or (departures.loop_planner if config else PlannerOptions())
+        self.banned = banned
+        self.deadline = deadline
+        self.options = options or (self.config.loop_planner if config else PlannerOptions())
         self.grounding: dict[LeafKey, GroundAction] = {}
         self.skills = self._skills_for(world)
         self.world: PlanningWorld = self.skills
         """The world as planning and the departures see it: `Skills` over the robot."""
         self.index = AchieverIndex(task, self.options, like)
-        order = None
-        if self.options.goal_agenda and self.options.mutexes and len(task.goal_literals) > 1:
-            relaxed = self.index.relaxed
-            extra = state_orders(task.goal_literals, self.index.mutexes, relaxed,
-                                 task.initial_state) if self.options.state_agenda else None
-            order = goal_agenda(task.goal_literals, relaxed.producers, self.index.mutexes,
-                                extra)
-        self.tree = initial_tree(task, order)
-        self.finishing = FinishFirst(self.skills, self.grounding) if self.finish_first else None
+        self.tree = initial_tree(task, self._goal_order())
         self.expansions: list[Expansion] = []
         self.ticks = 0
         self.expanded: set[Node] = set()
         self.dead: set[Node] = set()
+        self.circular: set[GroundLiteral] = set()
+        """Conditions whose achievers all needed what an enclosing Fallback pursues."""
+        self.culprits: list[Choice] = []
+        """When planning stopped: the achiever choices to give up first (backjump.py)."""
+        self.premature_successes = 0
+        self.searches = 0
+        """Plans found by search adopted into the tree (`adopt`)."""
+        self.early = EarlyExpansions(self)
+        self.hooks = Hooks(departures if departures is not None
+                           else departures_for(self.config, self.options))
         self._guards_seen: set[Node] = set()
         self._judged: tuple[int, frozenset[Atom] | None, Judge] | None = None  # see judge()
-        self.circular: set[GroundLiteral] = set()
         self._circles = Circles()
         self._last_state: frozenset[Atom] | None = None
         self._stalls = 0
-        self.premature_successes = 0
-        self.searches = 0
-        """Stuck conditions planned by the last-resort search (`search_stuck`)."""
-        self.deadline: float | None = None
-        """A time.perf_counter() value the last-resort search must not run past."""
-        self.rescuer: Rescuer | None = None
         self._tally: Counter[GroundLiteral] = Counter()
         self._round_limit = max(ROUND_EXPANSIONS, len(task.object_types))
         check = goal_check(self.tree)
         if check is not None:  # the final re-check of the goals is never expanded
             self.expanded.update(check.children)
             self.dead.update(check.children)
+        self.hooks.attach(self)
+
+    def _goal_order(self) -> list[GroundLiteral] | None:
+        """The goals in the order their reasonable orders ask (planner.agenda), if asked."""
+        options, task = self.options, self.task
+        if not (options.goal_agenda and options.mutexes and len(task.goal_literals) > 1):
+            return None
+        relaxed = self.index.relaxed
+        extra = state_orders(task.goal_literals, self.index.mutexes, relaxed,
+                             task.initial_state) if options.state_agenda else None
+        return goal_agenda(task.goal_literals, relaxed.producers, self.index.mutexes, extra)
 
     def _skills_for(self, world: World) -> Skills:
-        refiner = None if callable(getattr(world, "refine", None)) else \
+        refiner = None if capabilities_of(world).refines else \
             ConstraintRefiner(self.task, lambda: self.skills.facts())
         return Skills(world, self.grounding, self.config.stop_on_skill_error, refiner)
 
@@ -190,37 +163,37 @@ class BlendedLoop:
         self.skills.halt_all(self.config.halt_wait)
         self.skills = self._skills_for(world)
         self.world = self.skills
-        if self.finishing is not None:
-            self.finishing = FinishFirst(self.skills, self.grounding)
+        self.hooks.new_world(self.skills)
         self._circles.forget()
         self._last_state = None
         self._stalls = 0
 
-    # --- one tick ----------------------------------------------------------------------
+    # --- Algorithm 1: one tick ---------------------------------------------------------
 
     def tick(self) -> TickReport:
+        """Tick the tree; while it fails, expand it (up to the tick's expansion budget)."""
         before = self.world.facts()
         if before != self._last_state:
             self._circles.forget()  # an outside change: a repeated state is no longer a loop
         self.ticks += 1
         report = TickReport(self.ticks, FAILURE)
-        if self.look_ahead and self._last_state is not None and before != self._last_state:
-            expand_broken(self, report, self._last_state)
+        if self._last_state is not None and before != self._last_state:
+            self.hooks.before_tick(report, self._last_state)
         while True:
             self.skills.begin_tick()
-            status = report.status = self.tree.tick(self.finishing or self.skills)
+            status = report.status = self.tree.tick(self.hooks.world_for_tick(self.skills))
             if status is not FAILURE:
                 self._stalls = 0
                 break
             started = time.process_time()
             try:
-                expansion = self._expand()
+                expansion = self.expand()
                 if expansion is not None:
-                    report.expansions.append(expansion)
-                    expand_ahead(self, report)
-                    expand_if_forced(self, report)
+                    report.add(expansion)
+                    self.early.run(report)
+                    self.hooks.after_expansion(report)
             finally:
-                report.planning_seconds += time.process_time() - started
+                report.add_planning(time.process_time() - started)
             if expansion is not None:
                 self._stalls = 0
                 if len(report.expansions) < self.options.expansions_per_tick:
@@ -230,8 +203,11 @@ class BlendedLoop:
             else:
                 self._stall()
             break
-        if self.finishing is not None:
-            self.finishing.end_tick()
+        self.hooks.end_tick()
+        self._check_progress(before)
+        return report
+
+    def _check_progress(self, before: frozenset[Atom]) -> None:
         after = self.world.facts()
         if self._circles.repeated(self.skills, before, after, len(self.expansions)):
             executed = self.skills.executed
@@ -241,16 +217,24 @@ class BlendedLoop:
                 self.culprits = running_choices(self.tree.root, executed[-1].key)
             raise NoProgressError(loop_reason(len(self.expansions), self.skills))
         self._last_state = after
-        return report
 
-    def _expand(self) -> Expansion | None:
-        state = self.world.facts()
-        missing: list[GroundLiteral] = []
-        stuck: list[Node] = []
+    # --- Algorithm 1, lines 9-12: expanding the tree -------------------------------------
+
+    def get_condition_to_expand(self, state: frozenset[Atom]) -> list[Node]:
+        """Algorithm 3, in order of preference: the failed conditions not expanded yet,
+        breadth first (nearest to the state first with `closest_first`). The loop takes
+        the first that has achievers."""
         failed = failed_conditions(self.tree, self.expanded)
         if self.options.closest_first and len(failed) > 1:
             failed = closest_first(failed, self.index.relaxed, state)
-        for node in failed:
+        return failed
+
+    def expand(self) -> Expansion | None:
+        """Expand the condition Algorithm 3 gives; None when there is nothing to expand."""
+        state = self.world.facts()
+        missing: list[GroundLiteral] = []
+        stuck: list[Node] = []
+        for node in self.get_condition_to_expand(state):
             literal = literal_of(node)
             assert literal is not None
             if literal.holds(state):
@@ -260,40 +244,31 @@ class BlendedLoop:
                 # passes it.
                 continue
             if self._tally[literal] >= STUCK_EXPANSIONS:
-                searched = search_stuck(self, node)  # expanded again and again: going round
+                searched = self.hooks.when_stuck(node)  # expanded again and again
                 if searched is not None:
                     return searched
-                if self._tally[literal] >= self._round_limit and self.options.refine_more:
-                    from btplan.planner.backjump import enclosing_choices
-
-                    self.culprits = enclosing_choices(node)
-                    raise NoProgressError(
-                        f"{literal} was expanded {self._tally[literal]} times: the tree goes "
-                        f"round (expanded most often: {self.most_expanded()})")
-            achievers, spare = achievers_for(self, node, literal, state)
-            if node in self.optional and not achievers and give_up(node):
-                return self._expand()
+                self._stop_going_round(node, literal)
+            achievers, spare = self.achievers(node, literal, state)
+            if not achievers and self.hooks.gives_up(node):
+                return self.expand()
             self.expanded.add(node)
             if not achievers:
                 self.dead.add(node)
                 missing.append(literal)
                 stuck.append(node)
                 continue
-            if self.look_ahead:  # before ExpandTree moves the node under a Fallback
-                self.ahead = later_false(node, state, self.expanded)
-            elif self.look_deeper:
-                self.forcing = later_false(node, state, self.expanded)
+            self.hooks.before_expansion(node, state)
             try:
                 return self.apply(node, literal, achievers, spare)
             except UnresolvableConflictError:
-                if node not in self.optional or not give_up(node):
+                if not self.hooks.gives_up(node):
                     raise
-                return self._expand()  # a prepared condition, given up (prepare.py)
-        more = reexpand(self, state) if self.options.refine_more else None
+                return self.expand()  # an optional condition, given up
+        more = self.hooks.expand_again(state)
         if more is not None:
             return more
         for node in stuck:
-            searched = search_stuck(self, node)
+            searched = self.hooks.when_stuck(node)
             if searched is not None:
                 return searched
         if missing:
@@ -304,18 +279,14 @@ class BlendedLoop:
                                                      len(self.expansions), self.skills))
         return None
 
-    def most_expanded(self, count: int = 3) -> str:
-        """The conditions expanded most often, `on(a, b) (7)`: where the search went round."""
-        return most_expanded(self.expansions, count)
+    def _stop_going_round(self, node: Node, literal: GroundLiteral) -> None:
+        if self._tally[literal] >= self._round_limit and self.options.refine_more:
+            from btplan.planner.backjump import enclosing_choices
 
-    def record(
-        self, literal: GroundLiteral, achievers: list[GroundAction], conflicts: int, moves: int
-    ) -> Expansion:
-        expansion = Expansion(self.ticks, str(literal), [str(a) for a in achievers], conflicts,
-                              moves)
-        self._tally[literal] += 1
-        self.expansions.append(expansion)
-        return expansion
+            self.culprits = enclosing_choices(node)
+            raise NoProgressError(
+                f"{literal} was expanded {self._tally[literal]} times: the tree goes "
+                f"round (expanded most often: {self.most_expanded()})")
 
     def apply(
         self, node: Node, literal: GroundLiteral, achievers: list[GroundAction],
@@ -339,46 +310,96 @@ class BlendedLoop:
         first: UnresolvableConflictError | None = None
         state = self.world.facts()
         for batch in batches:
-            for action in batch:
-                self.grounding[action.key] = action
-            guarded = self._guards(batch, literal, state)
-            subtree = expand_tree(self.tree, node, batch, self.task, guarded)
-            self.never_expand(guard_nodes(subtree, guarded))
-            if self.goal_credit:  # set up what the first achiever enables
-                self.ahead += prepare_before(self, subtree, batch[0], literal, state)
-            if self.options.protect_goals:
-                protect(self, subtree)
-            before = lineage(subtree) if self.scope_moves else []
+            subtree = self.expand_tree(node, literal, batch, state)
             try:
-                resolution = resolve_conflicts(
-                    self.tree, subtree, self.judge(), self.options.reorder_goals,
-                    self.options.refine_more,
-                )
+                resolution = self.increase_priority(subtree)
             except UnresolvableConflictError as error:
                 if first is None:
                     from btplan.planner.backjump import conflict_choices
 
                     first = error
                     self.culprits = conflict_choices(subtree, self.judge())
-                _unexpand(self.tree, subtree, node)
+                self._unexpand(subtree, node)
                 continue
-            if resolution.moves and before:
-                self.never_expand(scope_moved(before, self.task))
+            self.hooks.placed(subtree, resolution.moves)
             return self.record(literal, batch, len(resolution.conflicts), resolution.moves)
         assert first is not None
-        if node in self.optional:
-            raise first  # an extra: given up, not searched for (prepare.py)
-        searched = search_stuck(self, node)
+        if self.hooks.optional(node):
+            raise first  # an optional condition: given up, not searched for
+        searched = self.hooks.when_stuck(node)
         if searched is not None:
             return searched
         raise first
 
-    @staticmethod
-    def _guards(
-        actions: list[GroundAction], literal: GroundLiteral, state: frozenset[Atom]
-    ) -> dict[LeafKey, tuple[GroundLiteral, ...]]:
-        """Guards for the achievers of a wildcard condition (achievers.guards)."""
-        return {a.key: g for a in actions if (g := guards(a, literal, state))}
+    def expand_tree(self, node: Node, literal: GroundLiteral, batch: list[GroundAction],
+                    state: frozenset[Atom]) -> Fallback:
+        """Algorithm 2: replace `node` by its atomic BT with `batch` as the achievers."""
+        self.ground(batch)
+        guarded = {a.key: g for a in batch if (g := guards(a, literal, state))}
+        subtree = expand_tree(self.tree, node, batch, self.task, guarded)
+        self.never_expand(guard_nodes(subtree, guarded))
+        self.hooks.new_subtree(subtree, batch, literal, state)
+        return subtree
+
+    def increase_priority(self, subtree: Fallback) -> Resolution:
+        """Algorithm 1, lines 11-12: IncreasePriority while the tree is in conflict."""
+        return resolve_conflicts(self.tree, subtree, self.judge(), self.options.reorder_goals,
+                                 self.options.refine_more)
+
+    def _unexpand(self, subtree: Fallback, condition: Node) -> None:
+        """Undo ExpandTree: put the condition back where its atomic BT stands."""
+        subtree.remove(condition)
+        parent = subtree.parent
+        if parent is None:
+            self.tree.root = condition
+            return
+        parent.replace(subtree, condition)
+
+    # --- what departures and helpers call ----------------------------------------------
+
+    def achievers(self, node: Node, literal: GroundLiteral,
+                  state: frozenset[Atom]) -> tuple[list[GroundAction], list[GroundAction]]:
+        """The ranked achievers of `node`'s condition, and the spare ones (choice.py)."""
+        kept, spare, circular = achievers_for(self, node, literal, state,
+                                              self.hooks.rank_achievers)
+        if circular:
+            self.circular.add(literal)
+        return kept, spare
+
+    def expand_now(self, report: TickReport, node: Node, state: frozenset[Atom],
+                   found: tuple[list[GroundAction], list[GroundAction]] | None = None
+                   ) -> bool:
+        """Expand `node` before a tick reaches it (btplan.acting.early), as that tick
+        would; False when it is left for later (`found`: its achievers, if known)."""
+        literal = literal_of(node)
+        if literal is None or node in self.expanded or not attached(node, self.tree.root):
+            return False
+        achievers, spare = found if found is not None else self.achievers(node, literal,
+                                                                          state)
+        if not achievers:
+            return False
+        try:
+            expansion = self.apply(node, literal, achievers, spare)
+        except UnresolvableConflictError:
+            return False
+        self.expanded.add(node)
+        report.add(expansion)
+        return True
+
+    def record(
+        self, literal: GroundLiteral, achievers: list[GroundAction], conflicts: int, moves: int
+    ) -> Expansion:
+        """Count an expansion of `literal` made by `achievers`."""
+        expansion = Expansion(self.ticks, str(literal), [str(a) for a in achievers], conflicts,
+                              moves)
+        self._tally[literal] += 1
+        self.expansions.append(expansion)
+        return expansion
+
+    def ground(self, actions: Iterable[GroundAction]) -> None:
+        """The grounded actions the tree's new leaves stand for."""
+        for action in actions:
+            self.grounding[action.key] = action
 
     def never_expand(self, nodes: list[Node]) -> None:
         """Guards say what an alternative is for; they are checked, never achieved."""
@@ -386,13 +407,22 @@ class BlendedLoop:
         self.dead.update(nodes)
         self._guards_seen.update(nodes)
 
+    def adopt(self, steps: list[GroundAction], checks: list[Node]) -> None:
+        """A plan found by search was put into the tree: ground its steps, never expand
+        the checks it brings."""
+        self.ground(steps)
+        self.expanded.update(checks)
+        self.dead.update(checks)
+        self.searches += 1
+
     def adopt_plan(self, steps: list[GroundAction]) -> None:
         """Put a plan for the whole goal behind the goal tree (`plan_whole_goal`)."""
         adopt_plan(self, steps)
 
     def judge(self) -> Judge:
         """What conflict checks know now; kept until a guard is added (guards are only
-        added: their number tells) or the state changes. Copying the guards grew with the tree."""
+        added: their number tells) or the state changes. Copying the guards grew with
+        the tree."""
         state = self.world.facts() if self.options.reorder_goals else None
         last = self._judged
         if last is not None and last[0] == len(self._guards_seen) and last[1] == state:
@@ -405,6 +435,10 @@ class BlendedLoop:
                           self.index.relaxed, state)
         self._judged = (len(self._guards_seen), state, judge)
         return judge
+
+    def most_expanded(self, count: int = 3) -> str:
+        """The conditions expanded most often, `on(a, b) (7)`: where the search went round."""
+        return most_expanded(self.expansions, count)
 
     def _stall(self) -> None:
         """The tree failed with nothing to expand (an action failed): retry, a few times."""
@@ -420,7 +454,7 @@ class BlendedLoop:
         state = self.world.facts()
         return all(g.holds(state) for g in self.task.goal_literals)
 
-    # --- many ticks --------------------------------------------------------------------
+    # --- many ticks (offline planning's rounds) ------------------------------------------
 
     def run(
         self,
@@ -450,4 +484,3 @@ class BlendedLoop:
             False, max_ticks, self.expansions[start:], self.tree,
             f"the goal was not reached within {max_ticks} ticks",
         )
-

@@ -273,9 +273,10 @@ def run(
     check_specs(specs, task)
     if world is not None:
         check_world(specs, world, world_name)
-        bind = getattr(world, "bind", None)  # a btplan.robot.Robot checks itself
-        if callable(bind):
-            bind(task)
+        from btplan.robot.api import Robot
+
+        if isinstance(world, Robot):  # checked against the domain before tick 1
+            world.bind(task)
     everyone = [*agents_from_specs(specs, seed), *agents]
     return run_task(task, world=world, agents=everyone, config=config, seed=seed,
                     max_ticks=max_ticks, rate=rate, keep=keep, view=view, stop=stop,

@@ -38,7 +38,8 @@ class Circles:
                  expansions: int) -> bool:
         """Record the state after a tick; True when the loop was in it before."""
         declared, world = skills.capabilities, skills.world
-        outside = int(world.outside_changes) if declared.outside_changes else 0  # type: ignore[attr-defined]
+        outside = (int(world.outside_changes)  # type: ignore[attr-defined]
+                   if declared.outside_changes else 0)
         if outside != self._outside:
             # Someone else acted while the tree ticked: a repeated state is no longer a loop.
             self._outside = outside
@@ -48,7 +49,8 @@ class Circles:
         self._ended = ended
         if after == before or not boundary:
             return False
-        key = (after, expansions, int(world.lessons) if declared.lessons else 0)  # type: ignore[attr-defined]
+        lessons = int(world.lessons) if declared.lessons else 0  # type: ignore[attr-defined]
+        key = (after, expansions, lessons)
         if key in self._seen:
             return True
         self._seen.add(key)

@@ -63,7 +63,7 @@ class TickRecord:
     """CPU time spent expanding the tree in this tick (not written to traces: it varies)."""
     checks: int = 0
     """Conditions the tree checked in this tick (every tick of the tree, if it grew), and
-    those looked at ahead of the running actions (btplan.acting.watch)."""
+    those looked at ahead of the running actions (btplan.acting.departures.watch)."""
     plan_lines: tuple[str, ...] = ()
     """The finished actions in the IPC plan format (for `--plan-out`; not in the trace)."""
 

@@ -143,7 +143,7 @@ class RefinedGrounding:
 
     def actions(self, state: frozenset[Atom]) -> list[GroundAction]:
         """The actions `ground` plans with, as plain grounded actions (no pyperplan task):
-        what the tree's last-resort search plans with (btplan.acting.refined_search)."""
+        what the tree's last-resort search plans with (btplan.acting.departures.refined_search)."""
         task, candidates = self._grown()
         return self._admitted(task, candidates, state)
 

@@ -1,18 +1,18 @@
-"""What the acting loop reports, and what its parts share of it.
+"""What the acting loop reports, and how its parts and departures see it.
 
-The loop (btplan.acting.loop) is split by responsibility: choosing achievers
-(`choice`), expanding before a tick reaches a condition (`early`), re-expanding
-(`regrow`), the last-resort search (`searched`), the messages (`diagnosis`); with the
-other goals in view, ranking (`credit`) and setting up another goal's step (`prepare`);
-finishing a halted action first (`finish`); the `protect_goals` guards (`protect`).
-Those parts see the loop through `LoopState`, so that none of them imports the loop
-itself.
+The loop (btplan.acting.loop) is Algorithm 1; choosing achievers (`choice`), the
+early expansions (`early`) and the messages (`diagnosis`) are its own parts, and the
+departures from the paper live in btplan.acting.departures behind the hooks of
+btplan.acting.hooks. All of them see the loop through `LoopState`, so that none of
+them imports the loop itself, and change it only through its methods.
 """
 
 from __future__ import annotations
 
+from collections.abc import Collection, Iterable, Mapping, Sequence
+
 from btplan.bt import BehaviorTree, LeafKey, Node, Status
-from btplan.model import GroundAction, GroundLiteral, Task
+from btplan.model import Atom, GroundAction, GroundLiteral, Task
 from btplan.planner import AchieverIndex, Judge, PlannerOptions, PlanningWorld
 from btplan.records import field, record
 
@@ -24,7 +24,6 @@ else:
 
 if TYPE_CHECKING:
     from btplan.planner.backjump import Choice
-    from btplan.planner.rescue import Rescuer
 
 
 @record
@@ -46,8 +45,19 @@ class TickReport:
     planning_seconds: float = 0.0
     """CPU time (process time) spent growing the tree in this tick, the tick itself excluded."""
     checks_ahead: int = 0
-    """Conditions looked at ahead of the running actions (btplan.acting.watch), besides
-    those the tick itself checked: monitoring, not planning."""
+    """Conditions looked at ahead of the running actions (btplan.acting.departures.watch),
+    besides those the tick itself checked: monitoring, not planning."""
+
+    def add(self, expansion: Expansion) -> None:
+        """An expansion made in this tick."""
+        self.expansions.append(expansion)
+
+    def add_planning(self, seconds: float) -> None:
+        self.planning_seconds += seconds
+
+    def looked_ahead(self, checks: int) -> None:
+        """Conditions looked at ahead of the running actions in this tick."""
+        self.checks_ahead = checks
 
 
 @record
@@ -60,35 +70,53 @@ class RunResult:
 
 
 class LoopState(Protocol):
-    """The loop as its parts see it (BlendedLoop has all of this)."""
+    """The loop as its departures and helpers see it (BlendedLoop has all of this).
 
-    task: Task
-    world: PlanningWorld
-    options: PlannerOptions
-    index: AchieverIndex
-    tree: BehaviorTree
-    grounding: dict[LeafKey, GroundAction]
-    expansions: list[Expansion]
-    expanded: set[Node]
-    """Conditions expanded (or never to be: guards, checks)."""
-    dead: set[Node]
-    """Conditions never to be re-expanded."""
-    circular: set[GroundLiteral]
-    banned: frozenset[Choice]
-    ahead: list[Node]
-    """Later false preconditions waiting to be expanded in this tick (btplan.acting.ahead)."""
-    forcing: list[Node]
-    """Later false preconditions to expand in this tick only if their achiever would make
-    the robot give up what is held before them (`look_deeper`, btplan.acting.ahead)."""
-    goal_credit: bool
-    optional: set[Node]
-    """Conditions added before an achiever for another goal's step (btplan.acting.prepare)."""
-    relaxed_plans: object | None
-    """btplan.acting.prepare's RelaxedPlans for the index's relaxed model, once asked
-    (typed loosely: that module sees the loop through this one)."""
-    rescuer: Rescuer | None
-    deadline: float | None
-    searches: int
+    They read these fields and change the loop only through its methods."""
+
+    @property
+    def task(self) -> Task: ...
+
+    @property
+    def world(self) -> PlanningWorld:
+        """`Skills` over the robot: the state, refinement, and the skills' logs."""
+        ...
+
+    @property
+    def options(self) -> PlannerOptions: ...
+
+    @property
+    def index(self) -> AchieverIndex: ...
+
+    @property
+    def tree(self) -> BehaviorTree: ...
+
+    @property
+    def grounding(self) -> Mapping[LeafKey, GroundAction]: ...
+
+    @property
+    def expansions(self) -> Sequence[Expansion]: ...
+
+    @property
+    def expanded(self) -> Collection[Node]:
+        """Conditions expanded (or never to be: guards, checks)."""
+        ...
+
+    @property
+    def dead(self) -> Collection[Node]:
+        """Conditions never to be re-expanded."""
+        ...
+
+    @property
+    def banned(self) -> frozenset[Choice]: ...
+
+    @property
+    def early(self) -> EarlyQueue:
+        """Conditions to expand in this tick before a tick reaches them (btplan.acting.early)."""
+        ...
+
+    @property
+    def deadline(self) -> float | None: ...
 
     def record(self, literal: GroundLiteral, achievers: list[GroundAction], conflicts: int,
                moves: int) -> Expansion: ...
@@ -96,7 +124,29 @@ class LoopState(Protocol):
     def apply(self, node: Node, literal: GroundLiteral, achievers: list[GroundAction],
               spare: list[GroundAction] | None = None) -> Expansion: ...
 
+    def achievers(self, node: Node, literal: GroundLiteral,
+                  state: frozenset[Atom]) -> tuple[list[GroundAction], list[GroundAction]]: ...
+
+    def expand_now(self, report: TickReport, node: Node, state: frozenset[Atom],
+                   found: tuple[list[GroundAction], list[GroundAction]] | None = None
+                   ) -> bool: ...
+
     def judge(self) -> Judge: ...
 
     def never_expand(self, nodes: list[Node]) -> None: ...
 
+    def ground(self, actions: Iterable[GroundAction]) -> None: ...
+
+    def adopt(self, steps: list[GroundAction], checks: list[Node]) -> None: ...
+
+
+class EarlyQueue(Protocol):
+    """The early expansions' queue, as departures add to it."""
+
+    def replace(self, nodes: list[Node]) -> None: ...
+
+    def extend(self, nodes: list[Node]) -> None: ...
+
+    def expand_broken(self, report: TickReport, last: frozenset[Atom]) -> None: ...
+
+    def expand_if_forced(self, report: TickReport, nodes: list[Node]) -> None: ...

@@ -377,7 +377,8 @@ def summary_table(result: acting.RunOutcome) -> Table:
         table.add_row("goal reached at", ", ".join(f"@{t}" for t in total.goal_reached))
         table.add_row("goal lost at", ", ".join(f"@{t}" for t in total.goal_lost) or "never")
     if total.overruns:
-        table.add_row("late ticks", f"{total.overruns} (worst {total.worst_lateness * 1000:.1f} ms)")
+        worst = total.worst_lateness * 1000
+        table.add_row("late ticks", f"{total.overruns} (worst {worst:.1f} ms)")
     return table
 
 

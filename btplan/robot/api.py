@@ -20,8 +20,9 @@ methods instead, with the `condition` and `action` decorators of this module.
 Before the run, `bind(task)` checks the robot against the domain: every action
 template and every predicate that actions change must be bound, to a function that
 takes their arguments (one error names every misfit, with close matches, at the
-subclass's `class` line); predicates no action changes are answered from the problem. A refined parameter is refined by a `refiner` when one is given, else by
-the objects of its type that its `where` constraints hold for.
+subclass's `class` line); predicates no action changes are answered from the problem.
+A refined parameter is refined by a `refiner` when one is given, else by the objects of
+its type that its `where` constraints hold for.
 """
 
 from __future__ import annotations

@@ -14,10 +14,11 @@ from dataclasses import dataclass
 from typing import Any
 
 from btplan import acting
-from btplan.baselines import BASELINES, run_baseline
 from btplan.acting.config import ActingConfig
+from btplan.baselines import BASELINES, run_baseline
 from btplan.errors import BtplanError, InputError, Span
 from btplan.model import Task
+from btplan.robot.contract import capabilities_of
 from btplan.sweep.scenarios import Scenario, resolve
 
 METHODS = ("btplan", "btplan-paper", *BASELINES)
@@ -125,7 +126,7 @@ def _measure(job: Job, task: Task, scenario: Scenario, max_ticks: int, method: s
         outcome = acting.run(task, agents=agents, world=world, seed=seed,
                              max_ticks=max_ticks, config=config, models=models)
     finally:
-        if hasattr(world, "close"):
+        if capabilities_of(world).closes:
             world.close()
     totals = outcome.summary()
     return {"success": outcome.reached, "ticks": outcome.ticks,

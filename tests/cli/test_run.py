@@ -237,3 +237,16 @@ def test_the_same_seed_gives_the_same_trace_in_any_process(tmp_path: Path) -> No
     kinds = [d["kind"] for line in texts[0].splitlines()
              for d in json.loads(line)["disturbances"]]
     assert {"set", "undo", "help"} <= set(kinds)
+
+
+def test_the_pybullet_world_on_a_domain_it_does_not_serve_points_at_your_own_robot() -> None:
+    pytest.importorskip("pybullet")
+    fetch = str(DOMAINS / "fetch_cup.bt")
+    no_scene = runner.invoke(app, ["run", fetch, "--sim", "pybullet", "-q"])
+    assert no_scene.exit_code == 2
+    assert "youbot.bt" in no_scene.output and "docs/robot.md" in no_scene.output
+    other = runner.invoke(app, ["run", fetch, "--sim", "pybullet", "-q", "--scenario",
+                                str(DOMAINS / "scenes" / "youbot.toml")])
+    assert other.exit_code == 2
+    assert "cannot measure: at, delivered" in other.output and "--world" in other.output
+    assert "Traceback" not in other.output

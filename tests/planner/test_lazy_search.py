@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from btplan.acting import offline
+from btplan.acting.offline import planning as offline
 from btplan.acting.offline import load, plan
 from btplan.errors import NoAchieverError
 from btplan.model import GroundLiteral, Task
@@ -173,7 +173,7 @@ class _Search:
 def _turns(monkeypatch: pytest.MonkeyPatch, limit: float, until: float,
            finds: int) -> tuple[_Clock, _Search, Callable[[], object]]:
     """SearchTurns begun at 100 s on a fake clock, with a search that finds on turn `finds`."""
-    from btplan.acting import whole_goal
+    from btplan.acting.offline import whole_goal
 
     clock = _Clock()
     monkeypatch.setattr(whole_goal.time, "perf_counter", clock)
@@ -210,7 +210,7 @@ def test_a_longer_time_limit_leaves_backchaining_longer_alone(
 
 def test_a_plan_found_in_a_search_turn_stops_backchaining_and_is_the_tree(
         monkeypatch: pytest.MonkeyPatch) -> None:
-    from btplan.acting import whole_goal
+    from btplan.acting.offline import whole_goal
 
     monkeypatch.setattr(whole_goal, "FIRST_TURN_SHARE", 0.0)  # a turn after the first tick
     monkeypatch.setattr(whole_goal, "MIN_TURN", 600.0)  # long enough to find the plan

@@ -1,4 +1,4 @@
-"""Finishing a halted action that does not interfere with the next (btplan.acting.finish)."""
+"""Finishing a halted action that does not interfere with the next (btplan.acting.departures.finish)."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from pathlib import Path
 
 from btplan import run
 from btplan.acting import ACTING_OPTIONS
-from btplan.acting.finish import FinishFirst
+from btplan.acting.departures.finish import FinishFirst
 from btplan.acting.offline import load
 from btplan.bt import RUNNING
 from btplan.bt.world import LeafKey

@@ -1,4 +1,4 @@
-"""Goal-aware achiever choice (btplan.acting.credit, btplan.acting.prepare): the detours
+"""Goal-aware achiever choice (btplan.acting.departures.credit, btplan.acting.departures.prepare): the detours
 that choosing one goal at a time makes, and that the btplan method no longer makes."""
 
 from __future__ import annotations
@@ -8,9 +8,9 @@ from pathlib import Path
 
 from btplan import run
 from btplan.acting import ACTING_OPTIONS
-from btplan.acting.credit import credit_goals
+from btplan.acting.departures.credit import credit_goals
 from btplan.acting.offline import load
-from btplan.acting.prepare import (
+from btplan.acting.departures.prepare import (
     RelaxedPlans,
     give_up,
     insert_before_action,
@@ -196,7 +196,7 @@ def test_a_runs_relaxed_model_is_freed_once_the_run_is_over(tmp_path: Path) -> N
     import gc
     import weakref
 
-    from btplan.acting.prepare import _PLANS
+    from btplan.acting.departures.prepare import _PLANS
 
     task = task_of(tmp_path, "blocksworld.bt", DETOUR, "detour")
     index = AchieverIndex(task, OPTIONS)

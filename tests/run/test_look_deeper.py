@@ -1,4 +1,4 @@
-"""Looking one level deeper (btplan.acting.ahead): a later condition's achiever that
+"""Looking one level deeper (btplan.acting.departures.ahead): a later condition's achiever that
 needs what is about to be held is dealt with before it is held."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ import pytest
 
 from btplan import run
 from btplan.acting import ACTING_OPTIONS, RunOutcome
-from btplan.acting.ahead import forced_out
+from btplan.acting.departures.ahead import forced_out
 from btplan.acting.offline import load
 from btplan.bt import Sequence
 from btplan.model import Atom, GroundLiteral, Task

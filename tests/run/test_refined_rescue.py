@@ -15,8 +15,7 @@ from pathlib import Path
 
 from btplan.acting import load
 from btplan.acting.loop import BlendedLoop
-from btplan.acting.refined_search import RefinedSearch, refines_for
-from btplan.acting.searched import search_stuck
+from btplan.acting.departures.refined_search import RefinedSearch, refines_for
 from btplan.model import ActionTemplate, Atom, GroundAction, GroundLiteral, Parameter
 from btplan.planner.expand import literal_of
 from btplan.planner.rescue import regress
@@ -89,7 +88,7 @@ def test_the_loop_plans_a_stuck_condition_with_the_worlds_values_and_reaches_the
     assert literal_of(goal) == GroundLiteral(Atom("on", ("green", "goal")))
     # The task's own groundings have no trajectory, so no MoveTo: nothing to plan with.
     assert loop.index.subgoal_search.search(world.facts(), [literal_of(goal)]) is None
-    searched = search_stuck(loop, goal)
+    searched = loop.hooks.when_stuck(goal)  # the last-resort search, as the loop asks it
     assert searched is not None and loop.searches == 1
     assert "Place(blue, aside_blue)" in searched.achievers
     result = loop.run(200)

@@ -107,7 +107,8 @@ def attempt(
     """
     groundings: dict[LeafKey, GroundAction] = {}
     world = SymbolicWorld(run.task, seed=run.seed, groundings=groundings)
-    loop = BlendedLoop(run.task, world, opts, like=run.models, banned=banned)
+    loop = BlendedLoop(run.task, world, opts, like=run.models, banned=banned,
+                       deadline=run.deadline)
     if plan is not None:
         loop.adopt_plan(plan)
     try:
@@ -125,7 +126,6 @@ def _rounds(
                                                 run.on_expansion)
     world = loop.skills.world
     assert isinstance(world, SymbolicWorld)
-    loop.deadline = deadline
     ticks_left = run.max_ticks
 
     def watch(report: TickReport) -> None:

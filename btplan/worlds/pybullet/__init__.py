@@ -50,11 +50,15 @@ def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = 
     recorder = Recorder(record) if record is not None else None  # refuse bad paths first
     path = Path(scene) if scene is not None else default_scene(task)
     if scene is None and not path.exists():
-        raise WorldError(f"no scene for domain {task.domain.name!r}: pass one with --scenario")
+        raise WorldError(f"the PyBullet worlds have no scene for domain "
+                         f"{task.domain.name!r}; they serve {_served()} (or a scene of "
+                         "yours for them, with --scenario). For a robot of your own, see "
+                         "docs/robot.md and run it with --world FILE.py:CLASS")
     from btplan.worlds.pybullet.assembly.scene import is_assembly_scene
 
     if is_assembly_scene(path):  # the two-arm scene of domains/yumi.bt
         return _open_assembly(task, path, seed, gui, recorder, verbose)
+    _check_vocabulary(task)
     loaded = load_scene(path)
     arity = {p.name: p.arity for p in task.domain.predicates}
     agents = scene_agents(loaded.events, str(path), arity)
@@ -63,6 +67,31 @@ def open_world(task: Task, scene: str | None = None, seed: int = 0, gui: bool = 
         world.on_frame = recorder
         world.save_recording = recorder.save
     return world
+
+
+MOBILE_PREDICATES = frozenset({"near", "holding", "hand_empty", "on", "blocks", "route"})
+MOBILE_ACTIONS = frozenset({"MoveTo", "Pick", "Place", "Drop"})
+"""What the mobile manipulator's world can measure and do (conditions.py, world.py)."""
+
+
+def _served() -> str:
+    scenes = sorted(p.stem for p in SCENES.glob("*.toml"))
+    domains = [s for s in scenes if (SCENES.parent / f"{s}.bt").exists()]
+    return (f"the shipped domains {', '.join(d + '.bt' for d in domains)} (scenes: "
+            f"{', '.join(scenes)})")
+
+
+def _check_vocabulary(task: Task) -> None:
+    """Refuse, before anything starts, a domain the mobile manipulator cannot act in."""
+    unknown = sorted({p.name for p in task.domain.predicates} - MOBILE_PREDICATES)
+    actions = sorted({a.name for a in task.domain.actions} - MOBILE_ACTIONS)
+    if unknown or actions:
+        what = "; ".join(part for part in (
+            f"predicates it cannot measure: {', '.join(unknown)}" if unknown else "",
+            f"actions it has no skill for: {', '.join(actions)}" if actions else "") if part)
+        raise WorldError(f"the PyBullet world cannot act in domain {task.domain.name!r} "
+                         f"({what}); it serves {_served()}. For a robot of your own, see "
+                         "docs/robot.md and run it with --world FILE.py:CLASS")
 
 
 def _open_assembly(task: Task, path: Path, seed: int, gui: bool, recorder: Recorder | None,

@@ -5,7 +5,7 @@ goal; as the fingers close, the check of that path counts the cube in hand as no
 put aside, and the branch that puts it aside starts the same Pick again. The pick
 restarted every time, and the world came back to the same state ("the world came back
 to an earlier state with no new expansion"). Finishing the halted action first
-(btplan.acting.finish; it is the same action) lets the pick lift the cube.
+(btplan.acting.departures.finish; it is the same action) lets the pick lift the cube.
 Seed 7 at p = 0: the tree went between two moves as a path was measured blocked, then
 free; finishing first takes another course there, which does not meet it. Both went
 round without it, with the deeper look the sweep runs the simulator with.

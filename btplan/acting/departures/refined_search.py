@@ -1,6 +1,6 @@
 """The last-resort search in a world that supplies values the task does not declare.
 
-btplan.acting.searched plans a stuck condition over the task's groundings. In the
+btplan.acting.departures.search plans a stuck condition over the task's groundings. In the
 simulator those have no trajectory and no put-aside pose, so no MoveTo and no Place to
 a pose at all: a condition stuck there stayed stuck, and the run ended where the tree
 had chosen an order it could not complete. Here the search plans with the actions

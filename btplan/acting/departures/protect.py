@@ -6,9 +6,10 @@ become conditions at the head of each alternative of a new atomic BT.
 
 from __future__ import annotations
 
+from btplan.acting.hooks import Departure
 from btplan.acting.state import LoopState
 from btplan.bt import Action, Composite, Fallback
-from btplan.model import GroundLiteral
+from btplan.model import Atom, GroundAction, GroundLiteral
 from btplan.planner.expand import condition_node
 
 
@@ -27,3 +28,13 @@ def protect(loop: LoopState, subtree: Fallback) -> None:
             guard = condition_node(GroundLiteral(atom, True), loop.task)
             assert isinstance(alternative, Composite)
             alternative.insert(0, guard)
+
+
+class ProtectGoals(Departure):
+    """The `protect_goals` option of the planner, at the new subtree."""
+
+    name = "protect_goals"
+
+    def new_subtree(self, subtree: Fallback, achievers: list[GroundAction],
+                    literal: GroundLiteral, state: frozenset[Atom]) -> None:
+        protect(self.loop, subtree)

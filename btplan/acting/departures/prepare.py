@@ -93,14 +93,14 @@ def producers(relaxed: RelaxedModel, atom: Atom) -> list[Producer]:
 
 
 def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
-                   condition: GroundLiteral, state: frozenset[Atom]) -> list[Node]:
+                   condition: GroundLiteral, state: frozenset[Atom], optional: set[Node],
+                   plans: RelaxedPlans) -> list[Node]:
     """Add the conditions `prepared` finds to the new subtree's first alternative; the
-    ones to expand. Not within a prepared condition's own subtree: preparing there
-    goes round (the truck's return prepares unloading the plane, whose unloading
-    prepares the truck's return)."""
-    if _within(subtree, loop.optional):
+    ones to expand. Not within a prepared condition's own subtree (`optional` holds
+    them): preparing there goes round (the truck's return prepares unloading the
+    plane, whose unloading prepares the truck's return)."""
+    if _within(subtree, optional):
         return []
-    plans = relaxed_plans(loop)
     found = prepared(action, condition, loop.task.goal_literals, plans, loop.index.mutexes,
                      state)
     if not found:
@@ -109,19 +109,15 @@ def prepare_before(loop: LoopState, subtree: Fallback, action: GroundAction,
     extra = [(c, m) for c, m in found if c not in taken]
     wanted, skips = insert_before_action(subtree, extra, loop.task, action)
     loop.never_expand(skips)
-    loop.optional.update(wanted)
     return wanted
 
 
-def relaxed_plans(loop: LoopState) -> RelaxedPlans:
-    """The relaxed plans of the loop's relaxed model, shared by the loops of that model."""
-    plans = loop.relaxed_plans
-    if not isinstance(plans, RelaxedPlans):  # the loop keeps what its model's loops share
-        relaxed = loop.index.relaxed
-        plans = _PLANS.get(relaxed)
-        if plans is None:
-            plans = _PLANS[relaxed] = RelaxedPlans(relaxed)
-        loop.relaxed_plans = plans
+def relaxed_plans(relaxed: RelaxedModel) -> RelaxedPlans:
+    """The relaxed plans of a relaxed model, shared by every loop of that model (while
+    one of them keeps a reference)."""
+    plans = _PLANS.get(relaxed)
+    if plans is None:
+        plans = _PLANS[relaxed] = RelaxedPlans(relaxed)
     return plans
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from btplan.acting.choice import allowed
 from btplan.acting.diagnosis import most_expanded
+from btplan.acting.hooks import Departure
 from btplan.acting.state import Expansion, LoopState
 from btplan.bt import FAILURE, Fallback, Node
 from btplan.errors import BudgetExceededError, UnresolvableConflictError
@@ -72,7 +73,7 @@ def _append_alternatives(
     assert literal is not None
     state = loop.world.facts()
     for action in actions[: loop.options.max_alternatives]:
-        loop.grounding[action.key] = action
+        loop.ground([action])
         guard = guards(action, literal, state)
         alternative = achiever_sequence(action, loop.task, guard)
         loop.never_expand(alternative.children[: len(guard)])
@@ -95,3 +96,12 @@ def _append_alternatives(
             fallback.remove(node)
         return None
     return [a for a, _ in appended], len(resolution.conflicts), resolution.moves
+
+
+class Regrow(Departure):
+    """The `refine_more` option of the planner, when nothing new is left to expand."""
+
+    name = "refine_more"
+
+    def expand_again(self, state: frozenset[Atom]) -> Expansion | None:
+        return reexpand(self.loop, state)

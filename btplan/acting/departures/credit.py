@@ -11,7 +11,7 @@ the goal.
 
 Ranking it first is not enough: a Fallback runs the first alternative that can run,
 so while b5 is covered `put_down(b4)` would still run. That b5 is cleared before b4
-is taken off b3 is btplan.acting.prepare's part; with both, `stack(b4, b5)` runs when
+is taken off b3 is btplan.acting.departures.prepare's part; with both, `stack(b4, b5)` runs when
 b4 is in hand. Off in the published algorithm.
 """
 

@@ -1,0 +1,53 @@
+"""Keep the other goals in view when choosing and placing achievers (`credit_other_goals`).
+
+Achievers whose effects make other goals true are ranked first
+(btplan.acting.departures.credit), and before an achiever runs, the rest of a step of
+another goal that it enables is set up (btplan.acting.departures.prepare). The
+conditions added that way are optional: one that finds no achiever or no place is
+given up, not counted as stuck.
+"""
+
+from __future__ import annotations
+
+from btplan.acting.departures.credit import credit_goals
+from btplan.acting.departures.prepare import (
+    RelaxedPlans,
+    give_up,
+    prepare_before,
+    relaxed_plans,
+)
+from btplan.acting.hooks import Departure
+from btplan.bt import Fallback, Node
+from btplan.model import Atom, GroundAction, GroundLiteral
+
+
+class OtherGoals(Departure):
+    """Credit and preparation for the other goals; keeps the conditions it added."""
+
+    name = "credit_other_goals"
+
+    def __init__(self) -> None:
+        self.added: set[Node] = set()
+        """Conditions added before an achiever for another goal's step."""
+        self._plans: RelaxedPlans | None = None
+
+    def rank_achievers(self, achievers: list[GroundAction], literal: GroundLiteral,
+                       state: frozenset[Atom]) -> list[GroundAction]:
+        loop = self.loop
+        return credit_goals(achievers, literal, loop.task.goal_literals, loop.index.relaxed,
+                            state)
+
+    def new_subtree(self, subtree: Fallback, achievers: list[GroundAction],
+                    literal: GroundLiteral, state: frozenset[Atom]) -> None:
+        if self._plans is None:
+            self._plans = relaxed_plans(self.loop.index.relaxed)
+        wanted = prepare_before(self.loop, subtree, achievers[0], literal, state, self.added,
+                                self._plans)
+        self.added.update(wanted)
+        self.loop.early.extend(wanted)
+
+    def optional(self, node: Node) -> bool:
+        return node in self.added
+
+    def gives_up(self, node: Node) -> bool:
+        return node in self.added and give_up(node)
