@@ -69,6 +69,9 @@ class Skills:
         self.ended = 0
         """Actions that ended (finished, failed or halted): the loop's check for circles."""
         self.events = SkillEvents()
+        self._made_by_others: set[LeafKey] = set()
+        """Running skills some of whose effects another action made while they ran: their
+        effects holding says nothing about them."""
         self._ticked: dict[LeafKey, Status] = {}
         self._raw: object = None
         self._facts: frozenset[Atom] = frozenset()
@@ -177,10 +180,12 @@ class Skills:
             self._ticked[key] = status
             return status
         action = self.running.pop(key, None) or self._action(key)
+        self._made_by_others.discard(key)
         self.ended += 1
         if status is SUCCESS:
             self.events.finished.append(action)
             self.executed.append(action)
+            self._note_effects_of(action)
         else:
             self.events.failed.append(action)
         return status
@@ -188,9 +193,10 @@ class Skills:
     def _halt(self, key: LeafKey) -> None:
         action = self.running.pop(key)
         try:
-            observed = self._effects_hold(action)
+            observed = key not in self._made_by_others and self._effects_hold(action)
         except Exception:  # noqa: BLE001 (the state cannot be read: halt all the same)
             observed = False
+        self._made_by_others.discard(key)
         try:
             self.world.halt(key)
         except Exception as error:  # noqa: BLE001 (logged; the others must still be halted)
@@ -239,6 +245,14 @@ class Skills:
             return bool(self.world.stopped(key))  # type: ignore[attr-defined]
         except Exception:  # noqa: BLE001 (cannot tell: counts as not stopped)
             return False
+
+    def _note_effects_of(self, done: GroundAction) -> None:
+        """`done` finished: the running skills whose effects it made too are not credited
+        with them (a door the key opened while the button's press was still running)."""
+        made = set(done.add)
+        for key, action in self.running.items():
+            if made.intersection(action.add):
+                self._made_by_others.add(key)
 
     def _effects_hold(self, action: GroundAction) -> bool:
         if not action.add and not action.delete:

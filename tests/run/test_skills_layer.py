@@ -10,7 +10,7 @@ import btplan
 from btplan.acting.clock import FakeClock
 from btplan.acting.records import LISTED
 from btplan.acting.skills import Skills
-from btplan.bt import FAILURE, RUNNING, SUCCESS, LeafKey, Status
+from btplan.bt import RUNNING, SUCCESS, LeafKey, Status
 from btplan.worlds.symbolic import SymbolicWorld
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -171,3 +171,29 @@ def test_a_world_whose_state_cannot_be_read_ends_the_run_with_a_world_error() ->
 
     with pytest.raises(WorldError, match="Mute.facts.. raised OSError: the state topic is gone"):
         btplan.run(TASK, world=Mute(TASK))
+
+
+def test_effects_another_action_made_are_not_credited_to_a_running_skill() -> None:
+    """The door the key opened while the button's press still ran: the press is halted,
+    not finished by observation."""
+    from btplan.model import Atom, GroundAction
+
+    press = GroundAction(name="Press", add=(Atom("open", ()),))
+    unlock = GroundAction(name="Unlock", add=(Atom("open", ()),))
+
+    class Opened(Calls):
+        def step(self, key: LeafKey) -> Status:
+            return SUCCESS if key[0] == "Unlock" else RUNNING
+
+        def facts(self) -> list[tuple[str, str]]:
+            return [("open",)]
+
+    skills = Skills(Opened(), {press.key: press, unlock.key: unlock})
+    skills.begin_tick()
+    skills.start(press.key)
+    skills.start(unlock.key)
+    skills.begin_tick()
+    assert skills.step(unlock.key) is SUCCESS
+    skills.halt(press.key)
+    events = skills.take_events()
+    assert [str(a) for a in events.halted] == ["Press()"] and events.observed == []
