@@ -165,9 +165,10 @@ class Skills:
     # ---------------------------------------------------------------------------------
 
     def _begin(self, key: LeafKey) -> Status:
-        action = self._action(key)
+        action = self.running[key] = self._action(key)
         self.events.started.append(action)
-        self.running[key] = action
+        if self._effects_hold(action):  # nothing left for it to show
+            self._made_by_others.add(key)
         return self._settle(key, self._call(key, self.world.start))
 
     def _advance(self, key: LeafKey) -> Status:
