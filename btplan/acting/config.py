@@ -70,6 +70,9 @@ class ActingConfig:
     - `retry_failed_actions`: a skill that fails with nothing left to expand is tried
       again on the next tick until the tick limit; off, the run ends after
       `planner.stall_limit` such ticks in a row.
+    - `plan_offline_when_stuck`: when the loop cannot grow the tree any further, plan
+      the task offline from the facts of now, once, and act on that tree
+      (btplan.acting.offline_fallback); not in worlds that refine values as they run.
     - `stop_on_skill_error`: an exception inside a skill ends the run (SkillError)
       instead of counting as that action's FAILURE.
     - `halt_wait`: seconds to wait, on every way out of a run, for halted skills that
@@ -85,6 +88,7 @@ class ActingConfig:
     credit_other_goals: bool = True
     finish_halted_action: bool = True
     retry_failed_actions: bool = True
+    plan_offline_when_stuck: bool = True
     stop_on_skill_error: bool = False
     halt_wait: float = 2.0
 
@@ -95,7 +99,8 @@ class ActingConfig:
                            expansions_per_tick=1, expand_later_preconditions=False,
                            expand_when_forced=False, skip_moved_while_held=False,
                            credit_other_goals=False, finish_halted_action=False,
-                           retry_failed_actions=False), **changes)
+                           retry_failed_actions=False, plan_offline_when_stuck=False),
+                       **changes)
 
     @classmethod
     def algorithm1(cls, **changes: Any) -> ActingConfig:

@@ -25,7 +25,7 @@ from btplan.acting.early import EarlyExpansions
 from btplan.acting.hooks import Departure, Hooks
 from btplan.acting.progress import Circles
 from btplan.acting.skills import Skills
-from btplan.acting.state import Expansion, RunResult, TickReport
+from btplan.acting.state import Expansion, LoopMemory, RunResult, TickReport
 from btplan.bt import FAILURE, SUCCESS, BehaviorTree, Fallback, LeafKey, Node
 from btplan.errors import (
     BudgetExceededError,
@@ -354,6 +354,24 @@ class BlendedLoop:
             self.tree.root = condition
             return
         parent.replace(subtree, condition)
+
+    def memory(self) -> LoopMemory:
+        """What this loop knows of its tree (to go on from it elsewhere: `resume`)."""
+        return LoopMemory(frozenset(self.expanded), frozenset(self.dead),
+                          frozenset(self._guards_seen), dict(self.grounding))
+
+    def resume(self, tree: BehaviorTree, memory: LoopMemory) -> None:
+        """Act on `tree`, grown elsewhere (offline planning), from here on. The tree object
+        stays the same (its recorders stay attached); its root becomes `tree`'s."""
+        self.tree.halt(self.skills)
+        self.tree.root = tree.root
+        self.expanded = set(memory.expanded)
+        self.dead = set(memory.dead)
+        self._guards_seen = set(memory.guards)
+        self.ground(memory.grounding.values())
+        self._judged = None
+        self._circles.forget()
+        self._stalls = 0
 
     # --- what departures and helpers call ----------------------------------------------
 

@@ -21,6 +21,7 @@ from typing import Any
 from btplan.acting.clock import Clock
 from btplan.acting.config import ACTING_PLANNER, ActingConfig
 from btplan.acting.loop import BlendedLoop
+from btplan.acting.offline_fallback import OfflineFallback
 from btplan.acting.pacing import Pacer, Stop
 from btplan.acting.recorder import Recorder, TickView
 from btplan.acting.records import RunSummary, TickRecord
@@ -29,6 +30,7 @@ from btplan.errors import PlanningError, SkillError
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex, PlannerOptions
 from btplan.records import field, record, replace
+from btplan.robot.contract import capabilities_of
 from btplan.worlds.agents import Agent, agents_from_specs, check_world
 from btplan.worlds.disturb import DisturbSpec, check_specs, parse_spec
 from btplan.worlds.symbolic import SymbolicWorld
@@ -94,8 +96,6 @@ def task_models(task: Task, options: PlannerOptions | None = None) -> AchieverIn
 def default_config(world: object | None) -> ActingConfig:
     """The preset for a world: `simulator` for one that refines values as it runs
     (it declares `continuous`), `default` otherwise."""
-    from btplan.robot.contract import capabilities_of
-
     simulated = world is not None and capabilities_of(world).continuous
     return ActingConfig.simulator() if simulated else ActingConfig.default()
 
@@ -156,11 +156,13 @@ def run_task(
     loop = BlendedLoop(task, world, options, like=models, config=config)
     pacer = Pacer(rate, clock, stop)
     recorder = Recorder(loop, world, agents, view, deque(maxlen=RECENT_TICKS))
+    fallback = (OfflineFallback(task, stop) if config.plan_offline_when_stuck
+                and not capabilities_of(world).continuous else None)
     reached, reason, interrupted, raised = False, "", False, None
     try:
         with _terminate_cleanly():
             try:
-                reached, reason = _drive(loop, pacer, recorder, max_ticks, keep)
+                reached, reason = _drive(loop, pacer, recorder, max_ticks, keep, fallback)
             except Stop:
                 reason, interrupted = "interrupted", True
                 if keep and recorder.goal_held:  # a kept run stopped with the goal holding
@@ -191,7 +193,7 @@ def run_task(
 
 
 def _drive(loop: BlendedLoop, pacer: Pacer, recorder: Recorder, max_ticks: int | None,
-           keep: bool) -> tuple[bool, str]:
+           keep: bool, fallback: OfflineFallback | None = None) -> tuple[bool, str]:
     """Tick until the goal is reached (with `keep`, on until the limit), or the limit.
 
     The goal is checked in the world after the tick: when actions finish within the
@@ -203,7 +205,13 @@ def _drive(loop: BlendedLoop, pacer: Pacer, recorder: Recorder, max_ticks: int |
     while max_ticks is None or ticks < max_ticks:
         pacer.wait()
         recorder.before(loop.ticks + 1)
-        report = loop.tick()
+        try:
+            report = loop.tick()
+        except PlanningError:
+            taken = fallback.take_over(loop) if fallback is not None else None
+            if taken is None:
+                raise
+            report = taken  # the loop acts on the tree planned offline from the next tick
         ticks += 1
         now = report.status is SUCCESS and loop.goal_holds()
         goal = "reached" if now and not held else "lost" if held and not now else ""

@@ -60,6 +60,18 @@ class TickReport:
         self.checks_ahead = checks
 
 
+@record(frozen=True)
+class LoopMemory:
+    """What a loop knows of its tree beyond the tree itself: which conditions it expanded,
+    which it must never expand (guards, checks), the grounded actions of the leaves. A
+    tree planned offline comes with it, so that a loop acting online goes on from it."""
+
+    expanded: frozenset[Node]
+    dead: frozenset[Node]
+    guards: frozenset[Node]
+    grounding: Mapping[LeafKey, GroundAction]
+
+
 @record
 class RunResult:
     reached: bool

@@ -197,3 +197,19 @@ def test_effects_another_action_made_are_not_credited_to_a_running_skill() -> No
     skills.halt(press.key)
     events = skills.take_events()
     assert [str(a) for a in events.halted] == ["Press()"] and events.observed == []
+
+
+def test_a_loop_stuck_online_acts_on_a_tree_planned_offline_from_the_state_of_now() -> None:
+    """The Sussman anomaly: one online attempt finds no conflict-free place; offline
+    planning, from the facts the world reports then, finds the tree the loop goes on with."""
+    from btplan.acting.config import ActingConfig
+    from btplan.lang import load
+
+    task = load([str(ROOT / "domains" / "blocksworld.bt")], problem="sussman")
+    alone = btplan.run(task, config=ActingConfig.default(plan_offline_when_stuck=False))
+    assert not alone.reached and "conflict-free" in alone.reason
+    outcome = btplan.run(task)
+    assert outcome.reached
+    fell_back = [r for r in outcome.records if r.status == "FAILURE" and r.expansions]
+    assert len(fell_back) == 1  # the offline plan's expansions, on the tick it was made
+    assert outcome.summary().count("halted") == 0

@@ -12,6 +12,7 @@ import time
 from collections.abc import Callable
 
 from btplan.acting.loop import BlendedLoop, Expansion, TickReport
+from btplan.acting.state import LoopMemory
 from btplan.bt import BehaviorTree, LeafKey
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
@@ -62,6 +63,8 @@ class PlanResult:
     executed: list[GroundAction]
     stats: PlanStats
     expansions: list[Expansion] = field(default_factory=list)
+    memory: LoopMemory | None = None
+    """What the loop that grew the tree knew of it (for acting on it online)."""
 
 
 @record(frozen=True)
@@ -171,6 +174,7 @@ def _rounds(
                 stats=_stats(loop, world, rounds, time.perf_counter() - run.started,
                              loop.premature_successes - premature_before),
                 expansions=list(loop.expansions),
+                memory=loop.memory(),
             )
     raise PlanningError(
         f"after {max_rounds} runs from the initial state the tree still needed "
