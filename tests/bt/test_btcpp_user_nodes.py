@@ -11,6 +11,7 @@ wrong IDs, kinds or ports fails here even when its TreeNodesModel agrees with it
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -155,6 +156,17 @@ def test_user_leaves_run_the_exported_tree_to_the_goal(name: str) -> None:
     assert done == len(result.executed) * RUNNING_TICKS
 
 
+def _tick_while_running(nodes: UserNodes, disturb: Callable[[], None]) -> str:
+    """Tick until the tree stops running (at most MAX_TICKS), disturbing after each tick."""
+    status = "RUNNING"
+    for _ in range(MAX_TICKS):
+        status = nodes.tick()
+        if status != "RUNNING":
+            break
+        disturb()
+    return status
+
+
 def test_a_higher_priority_branch_halts_the_running_action() -> None:
     """The cube slips while the robot drives to the goal: Pick takes over and the
     ReactiveSequence halts MoveTo(goal), which starts again once the cube is held."""
@@ -162,14 +174,13 @@ def test_a_higher_priority_branch_halts_the_running_action() -> None:
     world = FactWorld(task)
     nodes = UserNodes(xml, world)
     moving = ("MoveTo", ("goal", "tau_goal"))
-    status = "RUNNING"
-    for _ in range(MAX_TICKS):
-        status = nodes.tick()
-        if status != "RUNNING":
-            break
+
+    def slip() -> None:
         if nodes.started[-1] == moving and moving not in nodes.halted:
             world.facts["holding"].discard(("cube",))
             world.facts.setdefault("hand_empty", set()).add(())
+
+    status = _tick_while_running(nodes, slip)
     assert status == "SUCCESS"
     assert world.satisfies(task.problem.goal)
     assert nodes.halted == [moving]
@@ -190,13 +201,12 @@ def test_the_exported_tree_does_not_grow_when_the_path_is_blocked() -> None:
     world = FactWorld(task)
     nodes = UserNodes(xml, world)
     moving = ("MoveTo", ("goal", "tau_goal"))
-    status = "RUNNING"
-    for _ in range(MAX_TICKS):
-        status = nodes.tick()
-        if status != "RUNNING":
-            break
+
+    def roll() -> None:
         if nodes.started[-1] == moving:
             world.facts.setdefault("blocks", set()).add(("sphere", "tau_goal"))
+
+    status = _tick_while_running(nodes, roll)
     assert status == "FAILURE"
     assert nodes.halted == [moving]
     assert not world.satisfies(task.problem.goal)
