@@ -16,6 +16,37 @@ from btplan.limits import MAX_INPUT_BYTES, check_size
 
 STDIO = "-"
 
+_STREAM_PATHS = {"/dev/stdin": 0, "/dev/stdout": 1, "/dev/stderr": 2}
+
+
+def stream_of(path: str) -> int | None:
+    """The file descriptor a path names when it is a stream of this process: `-` (standard
+    output), /dev/stdout, /dev/stderr, /dev/fd/N or /proc/self/fd/N; else None.
+
+    Such a path is written in place, never renamed over: /dev/stdout redirected to a
+    file is that file, and a rename would put the output where the shell no longer looks.
+    """
+    if path == STDIO:
+        return 1
+    if path in _STREAM_PATHS:
+        return _STREAM_PATHS[path]
+    for prefix in ("/dev/fd/", "/proc/self/fd/", f"/proc/{os.getpid()}/fd/"):
+        if path.startswith(prefix) and path[len(prefix):].isdigit():
+            return int(path[len(prefix):])
+    return None
+
+
+def write_stream(fd: int, text: str) -> None:
+    """Write `text` to the stream `fd` (standard output and error through Python's own)."""
+    if fd in (1, 2):
+        stream = sys.stdout if fd == 1 else sys.stderr
+        stream.write(text)
+        stream.flush()
+        return
+    view = memoryview(text.encode("utf-8"))
+    while view:
+        view = view[os.write(fd, view):]
+
 
 def read_text(path: str) -> str:
     """Read a UTF-8 text file, or standard input for `-`, with errors a user can act on.
@@ -52,10 +83,11 @@ def read_text(path: str) -> str:
 
 
 def write_atomic(path: str, text: str) -> None:
-    """Write `text` to `path` (standard output for `-`) all at once or not at all."""
-    if path == STDIO:
-        sys.stdout.write(text)
-        sys.stdout.flush()
+    """Write `text` to `path` (standard output for `-`) all at once or not at all; a
+    stream of this process (/dev/stdout, /dev/fd/N) is written in place (`stream_of`)."""
+    fd = stream_of(path)
+    if fd is not None:
+        write_stream(fd, text)
         return
     write_bytes_atomic(path, text.encode("utf-8"))
 

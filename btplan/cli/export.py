@@ -74,7 +74,8 @@ def export(
     from btplan.bt.formats import dump, json_schema, load_tree  # only this command needs them
 
     out = out_alias if out_alias is not None else out
-    check_outputs(Output("-o/--output", out))
+    check_outputs(Output("-o/--output", out),
+                  inputs=[*([tree] if tree else []), *(model or [])])
     if schema:
         if fmt is not Format.json:
             raise InputError("--schema describes the JSON format", hint="use: export json --schema")

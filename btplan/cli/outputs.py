@@ -15,12 +15,12 @@ keeps what it did. `LineStream` writes each line whole, in one system call.
 from __future__ import annotations
 
 import os
-import sys
+from collections.abc import Sequence
 from pathlib import Path
 from types import TracebackType
 
 from btplan.errors import InputError
-from btplan.io import STDIO, write_atomic
+from btplan.io import STDIO, stream_of, write_atomic, write_stream
 from btplan.records import record
 
 TYPE_CHECKING = False
@@ -39,32 +39,49 @@ class Output:
     folder: bool = False
 
 
-def check_outputs(*outputs: Output) -> None:
+def check_outputs(*outputs: Output, inputs: Sequence[str] = ()) -> None:
     """Refuse, before any work, outputs that cannot be written as given.
 
-    At most one output may take standard output (two would interleave), no two may
-    name the same file, and each path must be writable: not a folder (or, for a
-    folder output, not a file), in a folder that exists, with permission to write there.
+    At most one output may take standard output (two would interleave; /dev/stdout and
+    its aliases count as `-`), no output may be the same file as an input (it would
+    destroy it: compared by device and inode, through links) or as another output, and
+    each path must be writable: not a folder (or, for a folder output, not a file), in a
+    folder that exists, with permission to write there.
     """
     given = [o for o in outputs if o.path is not None]
-    on_stdout = [o.flag for o in given if o.path == STDIO]
+    on_stdout = [o.flag for o in given if o.path is not None and stream_of(o.path) == 1]
     if len(on_stdout) > 1:
         raise InputError(f"{on_stdout[0]} and {on_stdout[1]} both write to standard output "
-                         "('-'); send one of them to a file")
-    seen: dict[Path, str] = {}
+                         "('-' or /dev/stdout); send one of them to a file")
+    read = {identity(path): path for path in inputs if path != STDIO and os.path.exists(path)}
+    seen: dict[object, str] = {}
     for output in given:
         assert output.path is not None
-        if output.path == STDIO:
+        if stream_of(output.path) is not None:
             if output.folder:
-                raise InputError(f"{output.flag} needs a folder, not '-'")
+                raise InputError(f"{output.flag} needs a folder, not '{output.path}'")
             continue
         problem = folder_problem(output.path) if output.folder else file_problem(output.path)
         if problem is not None:
             raise InputError(f"{output.flag} {output.path}: {problem}")
-        key = Path(output.path).resolve()
+        key = identity(output.path)
+        if key in read:
+            same = "" if read[key] == output.path else f" {read[key]}"
+            raise InputError(f"{output.flag} {output.path} is the input file{same}: writing "
+                             "it would destroy the input", hint="write the output elsewhere")
         if key in seen:
             raise InputError(f"{seen[key]} and {output.flag} both write to {output.path}")
         seen[key] = output.flag
+
+
+def identity(path: str) -> object:
+    """What makes two paths the same file: device and inode when it exists (links and
+    other names of it included), its resolved path when it does not yet."""
+    try:
+        info = os.stat(path)
+    except OSError:
+        return Path(path).resolve()
+    return (info.st_dev, info.st_ino)
 
 
 def file_problem(path: str) -> str | None:
@@ -119,9 +136,11 @@ class LineStream:
     def __init__(self, path: str) -> None:
         self.path = path
         self._fd: int | None = None
+        self._stream = stream_of(path)
+        """A stream of this process (`-`, /dev/stdout, /dev/fd/N): written in place."""
 
     def __enter__(self) -> Self:
-        if self.path != STDIO:
+        if self._stream is None:
             self._fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666)
         return self
 
@@ -134,8 +153,7 @@ class LineStream:
     def write_line(self, line: str) -> None:
         data = (line if line.endswith("\n") else line + "\n")
         if self._fd is None:
-            sys.stdout.write(data)
-            sys.stdout.flush()
+            write_stream(self._stream if self._stream is not None else 1, data)
             return
         view = memoryview(data.encode("utf-8"))
         while view:

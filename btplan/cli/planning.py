@@ -56,7 +56,8 @@ def plan_and_write(domain: str, problem: str | None = None, fmt: str | None = No
     if timeout < 0:
         raise InputError(f"--timeout must be 0 (no limit) or positive, got {timeout:g}")
     check_outputs(Output("-o/--output", out), Output("--plan-out", plan_out),
-                  Output("--trace-expansions", trace_expansions, folder=True))
+                  Output("--trace-expansions", trace_expansions, folder=True),
+                  inputs=[domain, *([problem] if problem else [])])
     chosen = fmt if fmt is not None else default_format(out)
     snapshots: list[tuple[str, str]] = []
 

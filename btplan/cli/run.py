@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import importlib
-import sys
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -17,9 +16,9 @@ import typer
 from btplan.cli.typer_app import EXIT_FAILED, app, guarded, stderr
 from btplan.cli.console import escape
 from btplan.cli.interrupts import Interrupts
-from btplan.cli.outputs import STDIO, LineStream, Output, check_outputs, write_atomic
+from btplan.cli.outputs import LineStream, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Span, WorldError
-from btplan.io import read_text
+from btplan.io import read_text, stream_of, write_stream
 
 if TYPE_CHECKING:
     from rich.table import Table
@@ -146,7 +145,9 @@ def run(
         raise InputError(f"no preset named {preset!r}", Span("--preset", 1, 1),
                          f"presets: {', '.join(PRESETS)}")
     check_outputs(Output("--trace", trace), Output("--plan-out", plan_out),
-                  Output("--record", record))
+                  Output("--record", record),
+                  inputs=[domain, *(p for p in (problem, scenario) if p),
+                          *([world_spec.rpartition(":")[0]] if world_spec else [])])
     task = acting.load(resolve(domain), *([problem] if problem is not None else []))
     specs = [parse_spec(text, Span("--disturb", 1, 1)) for text in disturb or []]
     scene: str | None = None
@@ -212,7 +213,7 @@ class RunFiles:
     def __enter__(self) -> Self:
         if self.trace is not None:
             self.trace.__enter__()
-        if self.plan_out is not None and self.plan_out != STDIO:
+        if self.plan_out is not None and stream_of(self.plan_out) is None:
             write_atomic(self.plan_out, "")
         return self
 
@@ -232,9 +233,9 @@ class RunFiles:
         if self.plan_out is None or not new:
             return
         self._lines.extend(line + "\n" for line in new)
-        if self.plan_out == STDIO:
-            sys.stdout.write("".join(line + "\n" for line in new))
-            sys.stdout.flush()
+        stream = stream_of(self.plan_out)
+        if stream is not None:  # a stream takes the new lines; a file is written whole
+            write_stream(stream, "".join(line + "\n" for line in new))
         else:
             write_atomic(self.plan_out, "".join(self._lines))
 

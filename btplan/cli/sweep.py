@@ -186,7 +186,7 @@ def sweep(
     from btplan.sweep.stats import summarize
 
     files = [resolve(domain)] if problem is None else [resolve(domain), problem]
-    check_outputs(Output("-o/--output", output_path), Output("--plot", plot))
+    check_outputs(Output("-o/--output", output_path), Output("--plot", plot), inputs=files)
     seed_range, rate_list = parse_seeds(seeds), parse_rates(rates)
     methods = [m.strip() for m in method.split(",") if m.strip()]
     check_methods(methods, sim.value)

@@ -179,3 +179,56 @@ def test_a_link_is_written_through_and_a_pipe_is_not_replaced(tmp_path: Path) ->
     reader.join()
     assert result.exit_code == 0 and stat.S_ISFIFO(pipe.stat().st_mode)
     assert received[0].startswith(b"(define")
+
+
+@pytest.mark.parametrize("command", [
+    ["plan", "{domain}", "-o", "{domain}"],
+    ["plan", "{domain}", "--plan-out", "{link}"],
+    ["run", "{domain}", "-q", "--trace", "{domain}"],
+    ["run", "{link}", "-q", "--plan-out", "{domain}"],
+    ["sweep", "{domain}", "--seeds", "0:1", "--rates", "0", "-q", "-o", "{domain}"],
+])
+def test_an_output_that_is_an_input_is_refused_before_any_work(
+        tmp_path: Path, command: list[str]) -> None:
+    """Compared by device and inode: a link to the input is the input too."""
+    domain = tmp_path / "pp.bt"
+    domain.write_text(Path(PICK).read_text())
+    before = domain.read_bytes()
+    (tmp_path / "link.bt").symlink_to(domain)
+    args = [a.format(domain=domain, link=tmp_path / "link.bt") for a in command]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 2, result.output
+    assert "is the input file" in result.output and "Traceback" not in result.output
+    assert domain.read_bytes() == before
+
+
+def test_an_exported_tree_cannot_overwrite_the_tree_it_reads(tmp_path: Path) -> None:
+    tree = tmp_path / "t.json"
+    assert runner.invoke(app, ["plan", PICK, "-o", str(tree)]).exit_code == 0
+    before = tree.read_bytes()
+    result = runner.invoke(app, ["export", "json", str(tree), "-o", str(tree)])
+    assert result.exit_code == 2 and "is the input file" in result.output
+    assert tree.read_bytes() == before
+
+
+def test_dev_stdout_redirected_to_a_file_gets_the_plan(tmp_path: Path) -> None:
+    """The shell's file behind /dev/stdout is written in place, not renamed over."""
+    import subprocess
+    import sys
+
+    target = tmp_path / "o.txt"
+    with target.open("w") as out:
+        done = subprocess.run([sys.executable, "-m", "btplan", "run", PICK, "-q",
+                               "--plan-out", "/dev/stdout"], stdout=out,
+                              stderr=subprocess.PIPE, text=True, check=False)
+    assert done.returncode == 0, done.stderr
+    assert target.read_text().splitlines() == [
+        "(moveto cube tau_cube)", "(pick cube)", "(moveto goal tau_goal)", "(place cube goal)"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["o.txt"]
+
+
+@pytest.mark.parametrize("alias", ["/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"])
+def test_dev_stdout_counts_as_standard_output_in_the_one_stdout_rule(alias: str) -> None:
+    result = runner.invoke(app, ["run", PICK, "-q", "--trace", "-", "--plan-out", alias])
+    assert result.exit_code == 2
+    assert "both write to standard output" in result.output
