@@ -16,6 +16,9 @@ from btplan.limits import MAX_INPUT_BYTES, check_size
 
 STDIO = "-"
 
+NAME_MAX = 255
+"""Bytes in one file name on the file systems btplan writes to (ext4, xfs, tmpfs, APFS)."""
+
 _STREAM_PATHS = {"/dev/stdin": 0, "/dev/stdout": 1, "/dev/stderr": 2}
 
 
@@ -49,7 +52,8 @@ def write_stream(fd: int, text: str) -> None:
 
 
 def read_text(path: str) -> str:
-    """Read a UTF-8 text file, or standard input for `-`, with errors a user can act on.
+    """Read a UTF-8 text file, or standard input for `-`, with errors a user can act on;
+    a leading byte order mark is dropped.
 
     At most MAX_INPUT_BYTES are read (btplan/limits.py).
     """
@@ -72,7 +76,7 @@ def read_text(path: str) -> str:
     if b"\x00" in data:
         raise InputError("this is a binary file, not text", Span(path, 1, 1))
     try:
-        return data.decode("utf-8")
+        text = data.decode("utf-8")
     except UnicodeDecodeError as error:
         line = data[: error.start].count(b"\n") + 1
         column = error.start - (data.rfind(b"\n", 0, error.start) + 1) + 1
@@ -80,6 +84,8 @@ def read_text(path: str) -> str:
             "the file is not valid UTF-8 text", Span(path, line, column),
             hint=f"byte 0x{data[error.start]:02x} cannot be decoded",
         ) from None
+    # A byte order mark, as some Windows editors write it, is not part of the text.
+    return text[1:] if text.startswith("\ufeff") else text
 
 
 def write_atomic(path: str, text: str) -> None:
@@ -130,8 +136,12 @@ def _temporary(folder: Path, name: str) -> tuple[int, str]:
     """A new file of our own beside the target, as `tempfile.mkstemp` makes one (mode 0600,
     never an existing file); written here because importing tempfile costs `btplan plan`
     more start-up time than writing its outputs."""
+    # A name may be 255 bytes long; the temporary one must fit too, so a long target's
+    # name is cut (at a character boundary) to leave room for the marks around it.
+    room = NAME_MAX - len(f"..{os.getpid()}-00000000.tmp")
+    short = name.encode("utf-8")[:room].decode("utf-8", "ignore")
     for _ in range(100):
-        tmp = str(folder / f".{name}.{os.getpid()}-{os.urandom(4).hex()}.tmp")
+        tmp = str(folder / f".{short}.{os.getpid()}-{os.urandom(4).hex()}.tmp")
         try:
             return os.open(tmp, os.O_RDWR | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0),
                            0o600), tmp

@@ -48,6 +48,8 @@ class Interrupts:
     def __enter__(self) -> Self:
         for number in SIGNALS:
             try:
+                if signal.getsignal(number) == signal.SIG_IGN:
+                    continue  # ignored by whoever started us (a background job): stays so
                 self._previous[number] = signal.signal(number, self._handle)
             except ValueError:  # not the main thread: leave signals alone
                 break

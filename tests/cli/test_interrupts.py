@@ -185,3 +185,18 @@ def test_a_signal_during_generate_writes_nothing(tmp_path: Path,
     result = CliRunner().invoke(app, ["generate", "gripper", "-o", str(out)])
     assert result.exit_code == 143 and "interrupted" in result.stderr
     assert not out.exists()
+
+
+def test_an_inherited_ignored_sigint_stays_ignored(tmp_path: Path) -> None:
+    """A background job of a script starts with SIGINT ignored; the run keeps it so, as
+    GNU tools do, and goes on to the goal."""
+    env = {**os.environ, "COLUMNS": "200"}
+    child = subprocess.Popen(
+        [sys.executable, "-m", "btplan", "run", str(DOMAINS / "pick_place.bt"), "--hz", "20",
+         "-q", "--trace", "tr.jsonl"], cwd=tmp_path, env=env, stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE, text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN))
+    wait_for(tmp_path / "tr.jsonl", lambda r: r["tick"] >= 2, child)
+    code, err = stopped(child, signal.SIGINT)
+    assert code == 0, err
+    assert "goal reached" in err and "interrupted" not in err

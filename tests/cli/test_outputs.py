@@ -232,3 +232,11 @@ def test_dev_stdout_counts_as_standard_output_in_the_one_stdout_rule(alias: str)
     result = runner.invoke(app, ["run", PICK, "-q", "--trace", "-", "--plan-out", alias])
     assert result.exit_code == 2
     assert "both write to standard output" in result.output
+
+
+def test_a_legal_long_name_is_written_and_no_temporary_file_is_left(tmp_path: Path) -> None:
+    """A name of 250 bytes is legal; the temporary name beside it must fit too."""
+    target = tmp_path / ("x" * 245 + ".json")
+    result = runner.invoke(app, ["plan", PICK, "-o", str(target), "-q"])
+    assert result.exit_code == 0, result.output
+    assert [p.name for p in tmp_path.iterdir()] == [target.name]

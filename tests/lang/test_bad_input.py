@@ -115,3 +115,11 @@ def test_deeply_nested_bare_parentheses_in_pddl(tmp_path: Path) -> None:
     error = load_error(deep)
     assert error.message == f"parentheses nested more than {MAX_NESTING} levels deep"
     assert error.span is not None and error.span.column == MAX_NESTING + 1
+
+
+def test_a_byte_order_mark_at_the_start_is_not_part_of_the_text(tmp_path: Path) -> None:
+    """Some Windows editors start UTF-8 files with one; PDDL and .bt files read as without."""
+    source = Path(__file__).resolve().parents[2] / "domains" / "pick_place.bt"
+    marked = tmp_path / "pp.bt"
+    marked.write_bytes(b"\xef\xbb\xbf" + source.read_bytes())
+    assert load([str(marked)]).domain == load([str(source)]).domain
