@@ -156,5 +156,18 @@ class LineStream:
             write_stream(self._stream if self._stream is not None else 1, data)
             return
         view = memoryview(data.encode("utf-8"))
-        while view:
-            view = view[os.write(self._fd, view):]
+        try:
+            start: int | None = os.lseek(self._fd, 0, os.SEEK_CUR)
+        except OSError:  # a pipe: nothing to cut back
+            start = None
+        try:
+            while view:
+                view = view[os.write(self._fd, view):]
+        except OSError:
+            if start is not None:  # keep the file at a line boundary: cut the torn line
+                try:
+                    os.ftruncate(self._fd, start)
+                    os.lseek(self._fd, start, os.SEEK_SET)
+                except OSError:
+                    pass
+            raise

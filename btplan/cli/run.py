@@ -169,11 +169,14 @@ def run(
                                              probabilities(fail_prob))
         deadline = None if timeout is None else time.monotonic() + timeout
 
+        files = RunFiles(trace, plan_out)
+
         def stop() -> bool:
-            return interrupted() or (deadline is not None and time.monotonic() > deadline)
+            return (interrupted() or files.failed is not None
+                    or (deadline is not None and time.monotonic() > deadline))
 
         try:
-            with RunFiles(trace, plan_out) as files:
+            with files:
                 settings = Acting(seed=seed, max_ticks=max_ticks, rate=hz, keep=keep,
                                   preset="paper" if paper else preset, quiet=quiet,
                                   world_name=WORLD_NAMES[sim] if world_spec is None
@@ -184,9 +187,13 @@ def run(
 
             if capabilities_of(world).closes:
                 world.close()  # closes a recording into a playable file, interrupted or not
-    if result.interrupted and not interrupted():
+    if files.failed is not None:
+        result.reason = "an output could not be written"
+    elif result.interrupted and not interrupted():
         result.reason = f"the time budget ({timeout:g} s) ran out"
     stderr.print(summary_table(result))
+    if files.failed is not None:
+        raise files.failed
     if interrupted():
         raise typer.Exit(interrupted.exit_code)
     if not result.reached:
@@ -209,6 +216,9 @@ class RunFiles:
         self.trace = LineStream(trace) if trace is not None else None
         self.plan_out = plan_out
         self._lines: list[str] = []
+        self.failed: InputError | None = None
+        """Why an output could not be written (a full disk): the run stops at the next
+        tick, with its summary, and the command exits 2 with this."""
 
     def __enter__(self) -> Self:
         if self.trace is not None:
@@ -224,10 +234,19 @@ class RunFiles:
 
     def add(self, record: TickRecord) -> None:
         """The plan first, then the trace: an action the trace shows finished is in the
-        plan file, even when the run is killed between the two writes."""
-        self._write_plan(record.plan_lines)
-        if self.trace is not None:
-            self.trace.write_line(record.to_json())
+        plan file, even when the run is killed between the two writes. An output that
+        cannot be written any more is not written again (`failed`)."""
+        if self.failed is not None:
+            return
+        flag, path = "--plan-out", self.plan_out
+        try:
+            self._write_plan(record.plan_lines)
+            if self.trace is not None:
+                flag, path = "--trace", self.trace.path
+                self.trace.write_line(record.to_json())
+        except OSError as error:
+            self.failed = InputError(f"{flag} {path}: cannot write: "
+                                     f"{error.strerror or error}; the run stopped there")
 
     def _write_plan(self, new: tuple[str, ...]) -> None:
         if self.plan_out is None or not new:

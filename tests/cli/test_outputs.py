@@ -240,3 +240,33 @@ def test_a_legal_long_name_is_written_and_no_temporary_file_is_left(tmp_path: Pa
     result = runner.invoke(app, ["plan", PICK, "-o", str(target), "-q"])
     assert result.exit_code == 0, result.output
     assert [p.name for p in tmp_path.iterdir()] == [target.name]
+
+
+def test_a_trace_that_fills_the_disk_stops_the_run_at_a_line_boundary(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The fourth line gets half written, then the disk is full: the torn half is cut
+    away, the run stops at the next tick with its summary, and the command exits 2
+    naming the flag and the path."""
+    import errno
+
+    trace = tmp_path / "tr.jsonl"
+    real_write = os.write
+    lines = {"n": 0}
+
+    def full_disk(fd: int, data: bytes | memoryview) -> int:
+        if os.path.realpath(f"/proc/self/fd/{fd}") != str(trace):
+            return real_write(fd, data)
+        lines["n"] += 1
+        if lines["n"] == 4:
+            real_write(fd, bytes(data[: len(data) // 2]))
+        if lines["n"] >= 4:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real_write(fd, data)
+
+    monkeypatch.setattr(os, "write", full_disk)
+    result = runner.invoke(app, ["run", PICK, "-q", "--trace", str(trace)])
+    assert result.exit_code == 2, result.output
+    assert f"--trace {trace}: cannot write: No space left on device" in result.output
+    assert "btplan run" in result.output and "Traceback" not in result.output
+    text = trace.read_text()
+    assert text.endswith("\n") and len(text.splitlines()) == 3
