@@ -11,7 +11,6 @@ it did as a `Disturbance` for the trace and the live view.
 from __future__ import annotations
 
 import random
-from collections import Counter
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
@@ -38,8 +37,8 @@ class DisturbableWorld(Protocol):
 
     executed: list[GroundAction]
     started: list[GroundAction]
-    halted: list[GroundAction]
-    failed: list[GroundAction]
+
+    def running_actions(self) -> list[GroundAction]: ...
 
     def facts(self) -> frozenset[Atom]: ...
 
@@ -67,17 +66,9 @@ class Agent(Protocol):
 
 
 def running_action(world: DisturbableWorld) -> GroundAction | None:
-    """The action the robot has started and not yet finished, halted or failed, if any.
-
-    Derived from the world's public logs so that agents need no private state.
-    """
-    if not world.started:
-        return None
-    last = world.started[-1]
-    ended: Counter[tuple[str, tuple[str, ...]]] = Counter(
-        a.key for a in (*world.executed, *world.halted, *world.failed))
-    begun = sum(1 for a in world.started if a.key == last.key)
-    return last if begun > ended[last.key] else None
+    """The action the robot started last and has not yet finished, halted or failed."""
+    running = world.running_actions()
+    return running[-1] if running else None
 
 
 def _matches(action: GroundAction, target: Target | None) -> bool:
@@ -180,7 +171,7 @@ def _changes(added: Iterable[Atom], removed: Iterable[Atom]) -> str:
 
 NEEDS = {
     "undo": ("executed", "facts", "set_fact", "clear_fact"),
-    "help": ("started", "executed", "halted", "failed", "facts", "apply_action", "ground"),
+    "help": ("running_actions", "executed", "facts", "apply_action", "ground"),
     "set": ("facts", "set_fact"),
     "clear": ("facts", "clear_fact"),
     "fail": ("fail_next",),

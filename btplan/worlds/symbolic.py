@@ -26,6 +26,7 @@ from btplan.model import (
     matches,
 )
 from btplan.robot.contract import Capabilities
+from btplan.worlds.logs import RecentLog
 from btplan.robot.refine import ConstraintRefiner, holds
 
 TYPE_CHECKING = False
@@ -37,8 +38,8 @@ class SymbolicWorld:
     """The current state as a set of atoms, plus the bookkeeping of the robot's actions.
 
     `executed` lists the actions the robot completed, in order; `started`, `halted`
-    and `failed` record the rest of each action's life, for its agents (an agent that
-    undoes the last action started) and for tests; the acting loop keeps its own logs.
+    and `failed` record the recent rest of each action's life (btplan.worlds.logs), for
+    its agents and for tests; the acting loop keeps its own logs.
     """
 
     capabilities = Capabilities(refines=True)
@@ -65,9 +66,9 @@ class SymbolicWorld:
         self._refiner = ConstraintRefiner(task, lambda: self._state)
         self._fail_next: list[tuple[str, tuple[str, ...] | None]] = []
         self.executed: list[GroundAction] = []
-        self.started: list[GroundAction] = []
-        self.halted: list[GroundAction] = []
-        self.failed: list[GroundAction] = []
+        self.started: RecentLog[GroundAction] = RecentLog()
+        self.halted: RecentLog[GroundAction] = RecentLog()
+        self.failed: RecentLog[GroundAction] = RecentLog()
 
     # --- the state ---------------------------------------------------------------------
 
@@ -98,6 +99,10 @@ class SymbolicWorld:
     def fail_next(self, action_name: str, args: tuple[str, ...] | None = None) -> None:
         """Make the next tick of a matching action (any arguments when None) return FAILURE."""
         self._fail_next.append((action_name, None if args is None else tuple(args)))
+
+    def running_actions(self) -> list[GroundAction]:
+        """The actions started and not yet finished, halted or failed, oldest first."""
+        return [self.ground(key) for key in self._remaining]
 
     def ground(self, key: LeafKey) -> GroundAction:
         """The grounded action an Action leaf with this key stands for."""

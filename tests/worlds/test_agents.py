@@ -53,6 +53,15 @@ class LogWorld:
     def ground(self, key: tuple[str, tuple[str, ...]]) -> GroundAction:
         return instantiate(PICK, key[1])
 
+    def running_actions(self) -> list[GroundAction]:
+        """Started and not ended, from the logs (a world may know it more directly)."""
+        ended = [*self.executed, *self.halted, *self.failed]
+        running = list(self.started)
+        for action in ended:
+            if action in running:
+                running.remove(action)
+        return running
+
 
 def test_undo_reverses_the_last_executed_action() -> None:
     world = LogWorld({HOLDING})

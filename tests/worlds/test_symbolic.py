@@ -113,3 +113,17 @@ def test_facts_is_one_object_until_the_state_changes() -> None:
     assert Atom("near", ("cube",)) in w.facts() and w.facts() is not fourth
     assert fourth == frozenset(fourth)  # earlier states are left as they were
     assert Atom("near", ("goal",)) in fourth
+
+
+def test_the_action_logs_keep_their_recent_part_only() -> None:
+    """A run of a million ticks must not keep a million entries (btplan.worlds.logs)."""
+    from btplan.worlds.logs import KEPT
+
+    w = world()
+    key = ("MoveTo", ("cube", "tau_cube"))
+    for _ in range(KEPT + 2_500):
+        w.start(key)
+        w.halt(key)
+    assert KEPT <= len(w.started) <= KEPT + 1000 and KEPT <= len(w.halted) <= KEPT + 1000
+    w.start(key)
+    assert [str(a) for a in w.running_actions()] == ["MoveTo(cube, tau_cube)"]

@@ -17,6 +17,7 @@ from btplan.errors import WorldError
 from btplan.model import Atom, GroundAction, Task, instantiate
 from btplan.worlds.pybullet import motion
 from btplan.worlds.pybullet.skills import Skill
+from btplan.worlds.logs import RecentLog
 
 Key = tuple[str, tuple[str, ...]]
 
@@ -47,9 +48,9 @@ class SkillWorld(Generic[StateT, ConditionsT]):
         self.conditions = conditions
         self.running: dict[Key, Skill] = {}
         self.executed: list[GroundAction] = []
-        self.started: list[GroundAction] = []
-        self.halted: list[GroundAction] = []
-        self.failed: list[GroundAction] = []
+        self.started: RecentLog[GroundAction] = RecentLog()
+        self.halted: RecentLog[GroundAction] = RecentLog()
+        self.failed: RecentLog[GroundAction] = RecentLog()
         self.reasons: list[tuple[GroundAction, str]] = []
         """Each failed action with the reason its skill gave for it ('' for none)."""
         self.on_frame: Callable[[StateT, str], None] | None = None
@@ -75,6 +76,10 @@ class SkillWorld(Generic[StateT, ConditionsT]):
         return self.conditions.facts()
 
     # --- actions -------------------------------------------------------------------------
+
+    def running_actions(self) -> list[GroundAction]:
+        """The actions whose skills run now, oldest first (for the `help` agent)."""
+        return [self.ground(key) for key in self.running]
 
     def ground(self, key: Key) -> GroundAction:
         """The grounded action of a leaf key, for the logs."""
