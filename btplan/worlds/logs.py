@@ -7,18 +7,24 @@ a million entries. The acting loop keeps its own counts (btplan.acting.skills).
 
 from __future__ import annotations
 
-from typing import TypeVar
-
-T = TypeVar("T")
-
 KEPT = 10_000
 """Entries a log keeps; older ones are dropped, a thousand at a time."""
 
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # `typing` is left unimported to run: `btplan plan` starts without it
+    from typing import TypeVar
 
-class RecentLog(list[T]):
-    """A list whose `append` drops the oldest entries once it holds more than `KEPT`."""
+    T = TypeVar("T")
 
-    def append(self, item: T) -> None:
-        super().append(item)
-        if len(self) > KEPT + 1000:
-            del self[:1000]
+    class RecentLog(list[T]):
+        """A list whose `append` drops the oldest entries once it holds more than KEPT."""
+
+        def append(self, item: T) -> None: ...
+else:
+    class RecentLog(list):
+        """A list whose `append` drops the oldest entries once it holds more than KEPT."""
+
+        def append(self, item):
+            super().append(item)
+            if len(self) > KEPT + 1000:
+                del self[:1000]
