@@ -1,13 +1,15 @@
 """The acting layer: Algorithm 1 run against a world, offline (planning) and online (acting).
 
-`loop` ticks the tree and grows it where it fails (its parts are listed in `state`);
-`offline` plans a tree from the initial state; `online` acts with external agents and
-records each tick; `records` holds the per-tick records and the run summary;
-`live_view` draws them in a terminal; `ahead`, `watch` and `scope` are options of the
-online loop (look ahead along an action's preconditions; expand a condition ahead of the
-running action when an agent breaks it; skip a moved subtree while what it was moved
-for holds).
-The names below are imported on first use (PEP 562): planning needs neither the
+- `loop`: Algorithm 1 (tick, GetConditionToExpand, ExpandTree, IncreasePriority), with
+  its own parts `choice`, `early`, `progress`, `diagnosis`, and `skills` (the robot as
+  the tree sees it: one run per grounded action, the logs, safe halting);
+- `hooks` and `departures/`: every departure from the paper, an object behind a hook;
+- `config`: `ActingConfig` and its presets (`paper`, `algorithm1`, `default`, `simulator`);
+- `online`: a run (agents, a fixed rate on a `clock`, `keep`, every way out halted),
+  recorded tick by tick by `recorder` into `records`, drawn by `live_view`;
+- `offline/`: planning a tree from the initial state (`plan`), and `offline_fallback`,
+  which plans offline from the state of now when the loop is stuck.
+The benchmark's baselines live apart, in btplan.baselines. The names below are imported on first use (PEP 562): planning needs neither the
 online loop nor its agents.
 """
 
