@@ -14,12 +14,15 @@ keeps what it did. `LineStream` writes each line whole, in one system call.
 
 from __future__ import annotations
 
+import errno
 import os
-from collections.abc import Sequence
+import stat
+import time
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from types import TracebackType
 
-from btplan.errors import InputError
+from btplan.errors import InputError, Interrupted
 from btplan.io import STDIO, stream_of, write_atomic, write_stream
 from btplan.records import record
 
@@ -61,7 +64,8 @@ def check_outputs(*outputs: Output, inputs: Sequence[str] = ()) -> None:
             if output.folder:
                 raise InputError(f"{output.flag} needs a folder, not '{output.path}'")
             continue
-        problem = folder_problem(output.path) if output.folder else file_problem(output.path)
+        problem = link_problem(output.path) or (
+            folder_problem(output.path) if output.folder else file_problem(output.path))
         if problem is not None:
             raise InputError(f"{output.flag} {output.path}: {problem}")
         key = identity(output.path)
@@ -82,6 +86,16 @@ def identity(path: str) -> object:
     except OSError:
         return Path(path).resolve()
     return (info.st_dev, info.st_ino)
+
+
+def link_problem(path: str) -> str | None:
+    """Why a symbolic link at `path` cannot be written through: a loop of links."""
+    try:
+        os.stat(path)
+    except OSError as error:
+        if error.errno == errno.ELOOP:
+            return "is a loop of symbolic links"
+    return None
 
 
 def file_problem(path: str) -> str | None:
@@ -112,6 +126,8 @@ def file_problem(path: str) -> str | None:
 def folder_problem(path: str) -> str | None:
     """Why a folder of outputs cannot be made or written at `path`, or None if it can."""
     target = Path(path)
+    if target.is_symlink() and not target.exists():
+        return "is a link to a folder that does not exist"
     if target.exists() and not target.is_dir():
         return "is a file, not a folder"
     existing = target
@@ -124,6 +140,17 @@ def folder_problem(path: str) -> str | None:
     return None
 
 
+PIPE_POLL = 0.05
+"""Seconds between two looks for a named pipe's reader."""
+
+
+def _is_pipe(path: str) -> bool:
+    try:
+        return stat.S_ISFIFO(os.stat(path).st_mode)
+    except OSError:
+        return False
+
+
 class LineStream:
     """A file written line by line while a run goes on; `-` is standard output.
 
@@ -133,16 +160,35 @@ class LineStream:
     an existing file keeps its mode.
     """
 
-    def __init__(self, path: str) -> None:
+    def __init__(self, path: str, stop: Callable[[], bool] | None = None) -> None:
         self.path = path
+        self.stop = stop
+        """Asked while waiting for a named pipe's reader: a signal must not wait for one."""
         self._fd: int | None = None
         self._stream = stream_of(path)
         """A stream of this process (`-`, /dev/stdout, /dev/fd/N): written in place."""
 
     def __enter__(self) -> Self:
         if self._stream is None:
-            self._fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666)
+            self._fd = self._open_pipe() if _is_pipe(self.path) else os.open(
+                self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666)
         return self
+
+    def _open_pipe(self) -> int:
+        """Open a named pipe once it has a reader, without blocking a stop request: a
+        plain open() would wait for the reader through every signal."""
+        while True:
+            try:
+                fd = os.open(self.path, os.O_WRONLY | os.O_NONBLOCK)
+            except OSError as error:
+                if error.errno != errno.ENXIO:  # ENXIO: no reader yet
+                    raise
+            else:
+                os.set_blocking(fd, True)
+                return fd
+            if self.stop is not None and self.stop():
+                raise Interrupted(f"waiting for a reader of {self.path}")
+            time.sleep(PIPE_POLL)
 
     def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
                  tb: TracebackType | None) -> None:

@@ -17,7 +17,7 @@ from btplan.cli.typer_app import EXIT_FAILED, app, guarded, stderr
 from btplan.cli.console import escape
 from btplan.cli.interrupts import Interrupts
 from btplan.cli.outputs import LineStream, Output, check_outputs, write_atomic
-from btplan.errors import InputError, Span, WorldError
+from btplan.errors import InputError, Interrupted, Span, WorldError
 from btplan.io import read_text, stream_of, write_stream
 
 if TYPE_CHECKING:
@@ -169,19 +169,21 @@ def run(
                                              probabilities(fail_prob))
         deadline = None if timeout is None else time.monotonic() + timeout
 
-        files = RunFiles(trace, plan_out)
+        files = RunFiles(trace, plan_out, interrupted)
 
         def stop() -> bool:
             return (interrupted() or files.failed is not None
                     or (deadline is not None and time.monotonic() > deadline))
 
+        settings = Acting(seed=seed, max_ticks=max_ticks, rate=hz, keep=keep,
+                          preset="paper" if paper else preset, quiet=quiet,
+                          world_name=WORLD_NAMES[sim] if world_spec is None else world_spec)
         try:
             with files:
-                settings = Acting(seed=seed, max_ticks=max_ticks, rate=hz, keep=keep,
-                                  preset="paper" if paper else preset, quiet=quiet,
-                                  world_name=WORLD_NAMES[sim] if world_spec is None
-                                  else world_spec)
                 result = _act(task, world, specs, scene_agents, settings, files.add, stop)
+        except Interrupted as stopped:  # a signal while the trace pipe had no reader
+            stderr.print(f"[bold yellow]interrupted[/] {escape(stopped.progress)}")
+            raise typer.Exit(interrupted.exit_code) from None
         finally:
             from btplan.robot.contract import capabilities_of
 
@@ -212,8 +214,9 @@ class RunFiles:
     whenever an action finishes (on standard output, the new actions are appended).
     """
 
-    def __init__(self, trace: str | None, plan_out: str | None) -> None:
-        self.trace = LineStream(trace) if trace is not None else None
+    def __init__(self, trace: str | None, plan_out: str | None,
+                 stop: Callable[[], bool] | None = None) -> None:
+        self.trace = LineStream(trace, stop) if trace is not None else None
         self.plan_out = plan_out
         self._lines: list[str] = []
         self.failed: InputError | None = None

@@ -270,3 +270,56 @@ def test_a_trace_that_fills_the_disk_stops_the_run_at_a_line_boundary(
     assert "btplan run" in result.output and "Traceback" not in result.output
     text = trace.read_text()
     assert text.endswith("\n") and len(text.splitlines()) == 3
+
+
+@pytest.mark.parametrize("flag", ["--trace-expansions", "-o", "--plan-out"])
+def test_a_loop_of_links_as_an_output_is_bad_input(tmp_path: Path, flag: str) -> None:
+    (tmp_path / "a").symlink_to(tmp_path / "b")
+    (tmp_path / "b").symlink_to(tmp_path / "a")
+    result = runner.invoke(app, ["plan", PICK, flag, str(tmp_path / "a")])
+    assert result.exit_code == 2 and "is a loop of symbolic links" in result.output
+
+
+def test_a_dangling_link_as_the_expansion_folder_is_bad_input(tmp_path: Path) -> None:
+    (tmp_path / "steps").symlink_to(tmp_path / "missing" / "steps")
+    result = runner.invoke(app, ["plan", PICK, "-o", str(tmp_path / "t.json"),
+                                 "--trace-expansions", str(tmp_path / "steps")])
+    assert result.exit_code == 2
+    assert "is a link to a folder that does not exist" in result.output
+    assert not (tmp_path / "t.json").exists()
+
+
+def test_a_trace_pipe_without_a_reader_does_not_hold_up_a_stop(tmp_path: Path) -> None:
+    """open() of a named pipe waits for a reader through every signal; the trace waits in
+    short looks instead, and a stop request (SIGTERM) ends the wait."""
+    from btplan.cli.outputs import LineStream
+    from btplan.errors import Interrupted
+
+    pipe = tmp_path / "trace.fifo"
+    os.mkfifo(pipe)
+    asked: list[bool] = []
+
+    def stop() -> bool:
+        asked.append(True)
+        return len(asked) >= 3
+
+    with pytest.raises(Interrupted, match="waiting for a reader"):
+        LineStream(str(pipe), stop).__enter__()
+    assert len(asked) == 3
+
+
+def test_a_trace_pipe_with_a_reader_gets_every_line(tmp_path: Path) -> None:
+    import threading
+
+    from btplan.cli.outputs import LineStream
+
+    pipe = tmp_path / "trace.fifo"
+    os.mkfifo(pipe)
+    got: list[str] = []
+    reader = threading.Thread(target=lambda: got.extend(pipe.read_text().splitlines()))
+    reader.start()
+    with LineStream(str(pipe), lambda: False) as stream:
+        stream.write_line('{"tick": 1}')
+        stream.write_line('{"tick": 2}')
+    reader.join()
+    assert got == ['{"tick": 1}', '{"tick": 2}']
