@@ -6,26 +6,26 @@
 
 (define (domain yumi)
   (:requirements :strips :typing :equality)
-  (:types arm place face grasp item - object part fixture - item)
+  (:types arm spot face grasp item - object part fixture - item)
   (:constants up down - face away toward - grasp)
   (:predicates
-    (lies ?p - part ?s - place ?f - face)
+    (lies ?p - part ?s - spot ?f - face)
     (holds ?a - arm ?p - part ?g - grasp)
     (free ?a - arm)
     (mounted ?i - item)
-    (reaches ?a - arm ?s - place)
+    (reaches ?a - arm ?s - spot)
     (grasp_of ?f - face ?g - grasp)
     (turned ?g ?h - grasp)
     (needs ?p - part ?q ?r - item)
     (mounts ?a - arm))
 
   (:action Pick
-    :parameters (?p - part ?a - arm ?s - place ?f - face ?g - grasp)
+    :parameters (?p - part ?a - arm ?s - spot ?f - face ?g - grasp)
     :precondition (and (reaches ?a ?s) (grasp_of ?f ?g) (lies ?p ?s ?f) (free ?a))
     :effect (and (holds ?a ?p ?g) (not (lies ?p ?s ?f)) (not (free ?a))))
 
   (:action Place
-    :parameters (?p - part ?a - arm ?s - place ?f - face ?g - grasp)
+    :parameters (?p - part ?a - arm ?s - spot ?f - face ?g - grasp)
     :precondition (and (reaches ?a ?s) (grasp_of ?f ?g) (holds ?a ?p ?g))
     :effect (and (lies ?p ?s ?f) (free ?a) (not (holds ?a ?p ?g))))
 
@@ -41,7 +41,7 @@
 
 (define (problem phone)
   (:domain yumi)
-  (:objects left right - arm left_side right_side middle floor - place base - fixture chassis board battery camera cover screws - part)
+  (:objects left right - arm left_side right_side middle floor - spot base - fixture chassis board battery camera cover screws - part)
   (:init
     (free left)
     (free right)

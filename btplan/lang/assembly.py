@@ -58,7 +58,7 @@ ASSEMBLY = Domain(
     name="assembly",
     types=(
         TypeDef(name=ROOT_TYPE, parent=None),
-        *(TypeDef(name=n, parent=ROOT_TYPE) for n in ("arm", "place", "face", "grasp", "item")),
+        *(TypeDef(name=n, parent=ROOT_TYPE) for n in ("arm", "spot", "face", "grasp", "item")),
         TypeDef(name="part", parent="item"),
         TypeDef(name="fixture", parent="item"),
     ),
@@ -67,21 +67,21 @@ ASSEMBLY = Domain(
         TypedName(name="away", type="grasp"), TypedName(name="toward", type="grasp"),
     ),
     predicates=(
-        Predicate(name="lies", parameters=_params("p: part, s: place, f: face")),
+        Predicate(name="lies", parameters=_params("p: part, s: spot, f: face")),
         Predicate(name="holds", parameters=_params("a: arm, p: part, g: grasp")),
         Predicate(name="free", parameters=_params("a: arm")),
         Predicate(name="mounted", parameters=_params("i: item")),
-        Predicate(name="reaches", parameters=_params("a: arm, s: place")),
+        Predicate(name="reaches", parameters=_params("a: arm, s: spot")),
         Predicate(name="grasp_of", parameters=_params("f: face, g: grasp")),
         Predicate(name="turned", parameters=_params("g: grasp, h: grasp")),
         Predicate(name="needs", parameters=_params("p: part, q: item, r: item")),
         Predicate(name="mounts", parameters=_params("a: arm")),
     ),
     actions=(
-        _action("pick", "p: part, a: arm, s: place, f: face, g: grasp",
+        _action("pick", "p: part, a: arm, s: spot, f: face, g: grasp",
                 "reaches(a, s); grasp_of(f, g); lies(p, s, f); free(a)",
                 "holds(a, p, g); not lies(p, s, f); not free(a)"),
-        _action("place", "p: part, a: arm, s: place, f: face, g: grasp",
+        _action("place", "p: part, a: arm, s: spot, f: face, g: grasp",
                 "reaches(a, s); grasp_of(f, g); holds(a, p, g)",
                 "lies(p, s, f); free(a); not holds(a, p, g)"),
         _action("handover", "p: part, giver: arm, taker: arm, g: grasp, h: grasp",
@@ -122,7 +122,7 @@ def assembly(parts: int, seed: int = 0) -> tuple[Domain, Problem]:
     goal = list(names)
     rng.shuffle(goal)
     objects = [TypedName(name=a, type="arm") for a in ARMS]
-    objects += [TypedName(name=s, type="place") for s in PLACES]
+    objects += [TypedName(name=s, type="spot") for s in PLACES]
     objects.append(TypedName(name=BASE, type="fixture"))
     objects += [TypedName(name=p, type="part") for p in names]
     problem = Problem(

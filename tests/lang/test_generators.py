@@ -66,3 +66,14 @@ def test_a_generated_gripper_plan_reaches_the_goal() -> None:
         assert step.applicable(state), step
         state = step.apply(state)
     assert Atom("at", ("ball1", target)) in state
+
+
+@pytest.mark.parametrize("kind", ["blocksworld", "gripper", "logistics", "assembly"])
+def test_no_generated_name_is_both_a_type_and_an_action(kind: str) -> None:
+    """PDDL readers other than Fast Downward (unified-planning) refuse a name defined twice."""
+    from btplan.lang import generators
+
+    domain, _ = getattr(generators, kind)(4, seed=1)
+    types = {t.name.lower() for t in domain.types}
+    actions = {a.name.lower() for a in domain.actions}
+    assert types & actions == set()
