@@ -8,7 +8,7 @@ read through the node's blackboard on the tick that needs them, as BT.CPP does.
 from __future__ import annotations
 
 from btplan.bt.blackboard import NodeError, Ports, Value, as_text, to_bool, to_number
-from btplan.bt.decorators import Decorator
+from btplan.bt.decorators import Decorator, Retry
 from btplan.bt.node import Node
 from btplan.bt.script import Script
 from btplan.bt.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
@@ -277,3 +277,22 @@ class WhenUpdated(Decorator):
 
 __all__ = ["STATUS_NAMES", "Delay", "KeepRunningUntilFailure", "Loop", "Precondition", "Repeat",
            "RunOnce", "WhenUpdated", "status_port"]
+
+
+class BoardRetry(Retry):
+    """BT.CPP RetryUntilSuccessful whose `num_attempts` is a blackboard value
+    (`num_attempts="{num_locs}"`), read on every tick as BT.CPP reads its input port.
+
+    A value that allows no attempt (below 1, other than -1 for ever) counts as one.
+    """
+
+    __slots__ = ("ports",)
+
+    def __init__(self, child: Node | None, ports: Ports, name: str = "") -> None:
+        super().__init__(child, 1, name)
+        self.ports = ports
+
+    def tick(self, world: World) -> Status:
+        attempts = self.ports.int("num_attempts")
+        self.attempts = attempts if attempts >= 1 or attempts == -1 else 1
+        return super().tick(world)

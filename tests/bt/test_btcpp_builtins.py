@@ -45,6 +45,9 @@ CASES: list[tuple[str, str, int, dict[str, list[Status]], dict[int, tuple[set, s
     ("repeat_fails", '<Repeat num_cycles="-1"><A/></Repeat>', 6, {"A": [S, R, S, F]}, {}),
     ("retry_for_ever", '<RetryUntilSuccessful num_attempts="-1"><A/></RetryUntilSuccessful>',
      6, {"A": [F, R, F, F, S]}, {}),
+    ("retry_from_the_blackboard", '<Sequence><Script code="num_locs := 3"/>'
+     '<RetryUntilSuccessful num_attempts="{num_locs}"><A/></RetryUntilSuccessful></Sequence>',
+     6, {"A": [F, R, F, F, R, S]}, {}),
     ("keep_running", "<KeepRunningUntilFailure><A/></KeepRunningUntilFailure>", 6,
      {"A": [S, R, S, F]}, {}),
     ("run_once", '<Sequence><RunOnce then_skip="false"><A/></RunOnce><B/></Sequence>', 6,

@@ -44,6 +44,7 @@ from btplan.bt.formats.xmlparse import Element
 from btplan.bt.guard import guard
 from btplan.bt.leaves import Action, Condition
 from btplan.bt.loops import (
+    BoardRetry,
     Delay,
     KeepRunningUntilFailure,
     Loop,
@@ -250,8 +251,9 @@ class _Builder:
         value = ports.get(key, default)
         if pointer(value, key) is not None:
             raise self.doc.error(element, f"{key}={short(value)!r}: btplan needs a number here",
-                                 "a blackboard value is only read for Repeat, Switch, "
-                                 "RunOnce, Precondition, Loop and leaves")
+                                 "a blackboard value is only read for Repeat, "
+                                 "RetryUntilSuccessful, Switch, RunOnce, Precondition, Loop "
+                                 "and leaves")
         try:
             return int(value.strip())
         except ValueError:
@@ -305,14 +307,17 @@ class _Builder:
             if ident == "Precondition":
                 return Precondition(one, io, script, name)
             return (ScriptAction if ident == "Script" else ScriptCondition)(script, io, name)
-        return self.timed(element, ident, ports, name, kids)
+        return self.timed(element, ident, ports, name, kids, board)
 
     def timed(self, element: Element, ident: str, ports: dict[str, str], name: str,
-              kids: list[Node]) -> Node:
+              kids: list[Node], board: Blackboard) -> Node:
         if ident == "Parallel":
             return BtcppParallel(kids, self.number(element, ports, "success_count", "-1"),
                                  self.number(element, ports, "failure_count", "1"), name)
         if ident == "RetryUntilSuccessful":
+            if pointer(ports.get("num_attempts", ""), "num_attempts") is not None:
+                return BoardRetry(kids[0], Ports(f"{ident} {name!r}" if name else ident,
+                                                 ports, board, {}), name)
             attempts = self.number(element, ports, "num_attempts", "1")
             if attempts < 1 and attempts != -1:
                 raise self.doc.error(element, f"num_attempts={attempts} is not supported",
