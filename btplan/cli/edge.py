@@ -84,12 +84,20 @@ def format_input_error(error: InputError) -> str:
     """
     where = f"{error.span}: " if error.span else ""
     hint = f" ({abridge(error.hint)})" if error.hint else ""
-    lines = [f"{where}{abridge(error.message)}{hint}"]
+    lines = [one_line(f"{where}{abridge(error.message)}{hint}")]
     shown = error.excerpt()
     if shown is not None:
         lines.append(f"  {shown[0]}")
         lines.append("  " + " " * shown[1] + "^")
     return "\n".join(lines)
+
+
+def one_line(text: str) -> str:
+    """`text` with its control characters written as escapes (`\\n`): a path or a name
+    with a newline in it must not break the one line a script reads."""
+    if text.isprintable():
+        return text
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
 def debugging() -> bool:
@@ -125,13 +133,13 @@ def exit_code_for(error: BaseException) -> int:
         stderr.print(f"[bold red]error:[/] {escape(format_input_error(error))}")
         return EXIT_BAD_INPUT
     if isinstance(error, PlanningError):
-        stderr.print(f"[bold red]failed:[/] {escape(error.reason)}")
+        stderr.print(f"[bold red]failed:[/] {escape(one_line(error.reason))}")
         return EXIT_FAILED
     if isinstance(error, Interrupted):
         stderr.print(f"[bold yellow]interrupted:[/] {escape(str(error))}")
         return EXIT_INTERRUPTED
     if isinstance(error, BtplanError):
-        stderr.print(f"[bold red]error:[/] {escape(str(error))}")
+        stderr.print(f"[bold red]error:[/] {escape(one_line(str(error)))}")
         return EXIT_BAD_INPUT
     if isinstance(error, KeyboardInterrupt):
         stderr.print("[bold yellow]interrupted[/]")

@@ -116,3 +116,11 @@ def test_warnings_go_to_stderr_and_keep_exit_0(tmp_path: Path) -> None:
         f"warning: {path}:60:9: the goal 'route(cube, tau_goal)' can never hold"
     )
     assert "ok: 2 definitions checked" in result.stdout
+
+
+def test_a_newline_in_a_path_keeps_the_message_on_one_line(tmp_path: Path) -> None:
+    odd = str(tmp_path / "a\nb.bt")
+    result = runner.invoke(app, ["check", odd])
+    assert result.exit_code == 2
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 1 and "a\\nb.bt:1:1: no such file" in lines[0]
