@@ -153,3 +153,16 @@ def test_ascii_shows_lower_case_action_names_that_look_like_markup() -> None:
     tree = BehaviorTree(Sequence([Condition("clear", ("a",), ("x",)), Action("pickup", ("a",), ("x",))]))
     text = dump_ascii(tree)
     assert "[pickup(a)]" in text and "(clear(a))" in text
+
+
+def test_control_characters_in_names_are_shown_as_escapes() -> None:
+    """A name from a file must not drive the terminal: ESC and newlines become `\\x1b`, `\\n`."""
+    from btplan.bt import Action, Condition
+
+    tree = BehaviorTree(Fallback([Condition("on", ("cu\x1bbe", "goal")),
+                                  Sequence([Action("Pick", ("cube",))],
+                                           name="evil\x1b[31mred\nline")]))
+    for fmt in ("ascii", "dot"):
+        text = dump(tree, fmt)
+        assert not any(c != "\n" and not c.isprintable() for c in text), fmt
+        assert "\\x1b" in text

@@ -23,7 +23,16 @@ COLOURS: Mapping[Status, str] = {SUCCESS: "#9be09b", FAILURE: "#f4a3a3", RUNNING
 
 
 def _quote(text: str) -> str:
-    return '"' + text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n") + '"'
+    text = printable(text)
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def printable(text: str) -> str:
+    """`text` with control characters written as escapes (`\\x1b`, `\\n`): a name read from
+    a file must not drive the terminal (or a picture) it is shown in."""
+    if text.isprintable():
+        return text
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
 def node_label(node: Node) -> str:

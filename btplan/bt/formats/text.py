@@ -11,7 +11,7 @@ import io
 from collections.abc import Collection, Mapping
 from typing import TYPE_CHECKING
 
-from btplan.bt.formats.dot import node_label
+from btplan.bt.formats.dot import node_label, printable
 from btplan.bt.leaves import Action, Leaf
 from btplan.bt.node import Node
 from btplan.bt.status import FAILURE, RUNNING, SUCCESS, Status
@@ -27,14 +27,14 @@ def _line(node: Node, status: Status | None, traced: bool, halted: bool) -> str:
     from rich.markup import escape
 
     if isinstance(node, Action):
-        text = escape(f"[{node.name}]")
+        text = escape(f"[{printable(node.name)}]")
     elif isinstance(node, Leaf):
-        text = f"({escape(node.name)})"
+        text = f"({escape(printable(node.name))})"
     else:
-        label = node_label(node)
+        label = printable(node_label(node))
         plain = label.startswith(node.kind) or node.origin is not None and label[:1].isalpha()
         text = escape(label if plain else f"{label} {node.kind}")
-        text += f" [italic]{escape(node.name)}[/]" if node.name else ""
+        text += f" [italic]{escape(printable(node.name))}[/]" if node.name else ""
     if status in STYLES:
         assert status is not None
         return f"{text} [{STYLES[status]}]{status.value}[/]"
