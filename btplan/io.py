@@ -53,7 +53,7 @@ def write_stream(fd: int, text: str) -> None:
 
 def read_text(path: str) -> str:
     """Read a UTF-8 text file, or standard input for `-`, with errors a user can act on;
-    a leading byte order mark is dropped.
+    a leading byte order mark is dropped and line ends become LF.
 
     At most MAX_INPUT_BYTES are read (btplan/limits.py).
     """
@@ -84,8 +84,11 @@ def read_text(path: str) -> str:
             "the file is not valid UTF-8 text", Span(path, line, column),
             hint=f"byte 0x{data[error.start]:02x} cannot be decoded",
         ) from None
-    # A byte order mark, as some Windows editors write it, is not part of the text.
-    return text[1:] if text.startswith("\ufeff") else text
+    # A byte order mark, as some Windows editors write it, is not part of the text; and
+    # a line ends at CR LF or at a lone CR (old Mac files) as at LF, as editors read them.
+    if text.startswith("\ufeff"):
+        text = text[1:]
+    return text.replace("\r\n", "\n").replace("\r", "\n") if "\r" in text else text
 
 
 def write_atomic(path: str, text: str) -> None:

@@ -57,9 +57,12 @@ class Collection:
         """The first problem with its domain, or the one called `problem`."""
         where = Span(self.paths[0] if self.paths else STDIO, 1, 1)
         if not self.problems:
+            in_pddl = bool(self.paths) and all(p.lower().endswith(".pddl") for p in self.paths)
             raise InputError(
                 "no problem found",
                 where,
+                "give a problem file: (define (problem NAME) (:domain DOMAIN) (:objects ...) "
+                "(:init ...) (:goal ...))" if in_pddl else
                 "add 'problem NAME for DOMAIN { objects {...} init {...} goal {...} }' "
                 "or give a problem file",
             )
@@ -109,6 +112,12 @@ def read_units(path: str) -> tuple[list[DomainSyntax], list[ProblemSyntax]]:
     return _split(read_bt(text, path))
 
 
+def _defined_twice(again: DomainSyntax, first: DomainSyntax) -> None:
+    at = first.name.at
+    raise again.name.at.error(f"domain '{again.name.text}' is defined twice in this file",
+                              f"the first definition is at line {at.line}; keep one")
+
+
 def collect(paths: Sequence[str]) -> Collection:
     """Read every input, check every domain, and check each problem against its domain.
 
@@ -129,7 +138,12 @@ def collect(paths: Sequence[str]) -> Collection:
     broken: set[str] = set()
     for domains, _ in files:
         built.append([])
+        first: dict[str, DomainSyntax] = {}
         for d_syntax in domains:
+            earlier = first.setdefault(d_syntax.name.text, d_syntax)
+            if earlier is not d_syntax:
+                report.attempt(_defined_twice, d_syntax, earlier)
+                continue
             built_domain = report.attempt(build_domain, d_syntax, report)
             if built_domain is None:
                 broken.add(d_syntax.name.text)
@@ -171,6 +185,8 @@ def _read_nonempty(path: str) -> tuple[list[DomainSyntax], list[ProblemSyntax]]:
         raise InputError(
             "this input holds no domain and no problem",
             Span(path, 1, 1),
+            "a domain starts with '(define (domain NAME)', a problem with "
+            "'(define (problem NAME)'" if Path(path).suffix.lower() in PDDL_SUFFIXES else
             "a domain starts with 'domain NAME {', a problem with 'problem NAME for DOMAIN {'",
         )
     return domains, problems

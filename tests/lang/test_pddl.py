@@ -159,3 +159,30 @@ def test_parent_types_named_only_after_a_dash_are_declared(tmp_path: Path) -> No
         "car": "vehicle",
         "vehicle": "object",
     }
+
+
+def test_a_domain_defined_twice_in_one_file_is_refused_at_the_second(tmp_path: Path) -> None:
+    path = tmp_path / "twice.pddl"
+    path.write_text(DOMAIN + "\n" + DOMAIN)
+    with pytest.raises(InputError) as caught:
+        collect([str(path)])
+    assert "domain 'blocks' is defined twice in this file" in str(caught.value)
+    assert caught.value.span is not None and caught.value.span.line > DOMAIN.count("\n")
+
+
+def test_a_domain_without_a_problem_gets_a_pddl_hint(tmp_path: Path) -> None:
+    path = tmp_path / "domain.pddl"
+    path.write_text(DOMAIN)
+    with pytest.raises(InputError) as caught:
+        load([str(path)])
+    assert "no problem found" in str(caught.value)
+    assert "(define (problem NAME)" in (caught.value.hint or "")
+
+
+def test_a_file_with_carriage_returns_only_reads_as_with_newlines(tmp_path: Path) -> None:
+    plain, old_mac = tmp_path / "d.pddl", tmp_path / "cr.pddl"
+    plain.write_text(DOMAIN)
+    old_mac.write_text(DOMAIN.replace("\n", "\r"))
+    problem = tmp_path / "p.pddl"
+    problem.write_text(PROBLEM)
+    assert load([str(old_mac), str(problem)]) == load([str(plain), str(problem)])
