@@ -22,6 +22,7 @@ if TYPE_CHECKING:
     from rich.progress import Progress, TaskID
 
     from btplan.sweep import pool
+    from btplan.sweep.journal import RowJournal
     from btplan.sweep.runs import Job, Row
 
 
@@ -162,6 +163,9 @@ def sweep(
         metavar="SECONDS", help="Stop a run after this long (wall clock): an error row. "
                                 "Local workers only.")] = None,
     quiet: Annotated[bool, typer.Option("-q", "--quiet", help="No progress bar.")] = False,
+    resume: Annotated[bool, typer.Option(
+        "--resume", help="Go on from the rows an unfinished sweep left next to the output "
+                         "(FILE.rows.jsonl): only the runs not done yet are run.")] = False,
 ) -> None:
     """Run every method on every seed at every rate; write the rows and print medians.
 
@@ -182,6 +186,7 @@ def sweep(
     from btplan.acting.strips import require_pyperplan
     from btplan.shipped import resolve
     from btplan.sweep import explain, output, pool
+    from btplan.sweep.journal import RowJournal
     from btplan.sweep.runs import Job, check_methods, check_sim, prepared
     from btplan.sweep.stats import summarize
 
@@ -204,7 +209,15 @@ def sweep(
     prepared(job)  # bad domain files or scenarios are refused here, not in every worker
     check_sim(job)
     runs = [(m, r, s) for r in rate_list for m in methods for s in seed_range]
-    rows: list[Row] = []
+    journal = RowJournal(output_path)
+    rows = _resumed(journal, resume, set(runs))
+    done = {(r["method"], float(r["rate"]), int(r["seed"])) for r in rows}
+    total = len(runs)
+    runs = [run for run in runs if run not in done]
+    journal.open(keep=bool(rows))
+    if not quiet:
+        stderr.print(f"finished rows go to {escape(journal.path)} as they come"
+                     + (f" ({len(rows)} resumed)" if rows else ""))
     interrupted = False
     with Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
                   TimeElapsedColumn(), TextColumn("eta"), TimeRemainingColumn(),
@@ -214,6 +227,8 @@ def sweep(
         def execute(todo: list[pool.Run], into: list[Row]) -> None:
             def on_row(row: Row) -> None:
                 into.append(row)
+                if into is rows:
+                    journal.add(row)
                 progress.advance(task)
 
             if ray is not None:
@@ -229,7 +244,16 @@ def sweep(
                 _explain(job, rows, execute, progress, task)
         except KeyboardInterrupt:
             interrupted = True
-    output.write_rows(output_path, rows)
+    journal.close()
+    try:
+        output.write_rows(output_path, rows)
+    except OSError as error:
+        raise InputError(f"-o/--output {output_path}: cannot write: "
+                         f"{error.strerror or error}; the {len(rows)} rows are kept in "
+                         f"{journal.path}", hint="free the space, then run the same "
+                         "command with --resume to write them") from None
+    if not interrupted:
+        journal.remove()
     points = summarize(rows)
     stderr.print(escape(output.markdown_table(points)), end="")
     causes = explain.markdown(rows)
@@ -239,11 +263,25 @@ def sweep(
     if plot is not None and points:
         output.plot(points, plot)
     if interrupted:
-        stderr.print(f"[bold red]interrupted:[/] {len(rows)} of {len(runs)} runs written "
-                     f"to {escape(output_path)}")
+        stderr.print(f"[bold red]interrupted:[/] {len(rows)} of {total} runs written "
+                     f"to {escape(output_path)}; --resume goes on from {escape(journal.path)}")
         raise typer.Exit(128 + (terminated[0] if terminated else signal.SIGINT))
     errors = [r for r in rows if r["error"]]
     if errors:
         stderr.print(f"[bold red]failed:[/] {len(errors)} runs crashed; first: "
                      f"{escape(errors[0]['error'])}")
         raise typer.Exit(1)
+
+
+def _resumed(journal: RowJournal, resume: bool, planned: set[tuple[str, float, int]]
+             ) -> list[Row]:
+    """The rows an unfinished sweep left for these runs (with --resume); a side file left
+    without --resume is refused rather than overwritten."""
+    if not journal.exists():
+        return []
+    if not resume:
+        raise InputError(f"{journal.path} holds the rows of an unfinished sweep",
+                         Span("-o/--output", 1, 1),
+                         "add --resume to go on from them, or remove the file")
+    return [r for r in journal.read()
+            if (r.get("method"), float(r.get("rate", -1)), int(r.get("seed", -1))) in planned]

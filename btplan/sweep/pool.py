@@ -47,7 +47,11 @@ def _serve(conn: Connection, job: Job) -> None:
         if item is None:
             return
         method, rate, seed = item
-        conn.send(run_one(job, method, rate, seed))
+        row = run_one(job, method, rate, seed)
+        try:
+            conn.send(row)
+        except (BrokenPipeError, OSError):
+            return  # the parent died while this run went on: leave quietly
 
 
 class _Worker:
