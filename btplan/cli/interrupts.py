@@ -73,3 +73,67 @@ class Interrupts:
             os.write(2, message.encode())
         except OSError:
             pass
+
+
+class TimeLimitReached(BaseException):
+    """The hard time limit of a command went off (a BaseException: no `except Exception`
+    in the work may swallow it)."""
+
+
+class HardDeadline:
+    """A wall-clock limit that holds wherever the work is: in reading, grounding, search.
+
+    The planner checks its own deadline between steps and stops cleanly, saying how far
+    it got; some steps (grounding a wide problem, building the relaxed model) run long
+    between two checks. So a timer (SIGALRM) also goes off `GRACE` seconds after the
+    limit, raising TimeLimitReached wherever the work is. `phase` says what it was doing.
+    """
+
+    GRACE = 0.0
+
+    def __init__(self, seconds: float | None) -> None:
+        self.seconds = seconds
+        self.phase = "reading the task"
+        self._armed = False
+
+    def __enter__(self) -> Self:
+        if self.seconds:
+            try:
+                import signal as full_signal
+
+                self._previous = full_signal.signal(full_signal.SIGALRM, self._handle)
+                left = max(0.01, self.seconds - process_age() + self.GRACE)
+                full_signal.setitimer(full_signal.ITIMER_REAL, left)
+                self._armed = True
+            except ValueError:  # not the main thread: the planner's own checks only
+                pass
+        return self
+
+    def disarm(self) -> None:
+        """The limited work is done (what follows, writing the outputs, is not cut)."""
+        if self._armed:
+            import signal as full_signal
+
+            full_signal.setitimer(full_signal.ITIMER_REAL, 0)
+            full_signal.signal(full_signal.SIGALRM, self._previous)
+            self._armed = False
+
+    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
+                 tb: TracebackType | None) -> None:
+        self.disarm()
+
+    def _handle(self, signum: int, frame: FrameType | None) -> None:
+        raise TimeLimitReached
+
+
+def process_age() -> float:
+    """Seconds since this process started (its interpreter's start-up included): a time
+    limit counts from the command, as a user timing it does. 0 where /proc is missing."""
+    try:
+        with open("/proc/self/stat", "rb") as handle:
+            fields = handle.read().rsplit(b")", 1)[1].split()
+        with open("/proc/uptime", "rb") as handle:
+            uptime = float(handle.read().split()[0])
+        return max(0.0, uptime - int(fields[19]) / os.sysconf("SC_CLK_TCK"))
+    except (OSError, ValueError, IndexError):
+        return 0.0

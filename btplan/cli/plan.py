@@ -79,7 +79,8 @@ def plan_command(
     ] = False,
     timeout: Annotated[float, typer.Option(
         "--timeout", metavar="SECONDS",
-        help="Give up after SECONDS seconds (exit 1); 0: no limit.")] = DEFAULT_TIMEOUT,
+        help="Give up after SECONDS seconds from the start, reading and grounding included "
+             "(exit 1); 0: no limit.")] = DEFAULT_TIMEOUT,
     quiet: Annotated[bool, typer.Option(
         "-q", "--quiet", help="No progress and no summary on standard error.")] = False,
 ) -> None:

@@ -15,9 +15,9 @@ from pathlib import Path
 
 from btplan.cli.console import escape
 from btplan.cli.edge import CommandExit, stderr
-from btplan.cli.interrupts import Interrupts
+from btplan.cli.interrupts import HardDeadline, Interrupts, TimeLimitReached, process_age
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
-from btplan.errors import InputError, Interrupted
+from btplan.errors import InputError, Interrupted, PlanningError
 from btplan.records import replace
 
 TYPE_CHECKING = False
@@ -73,14 +73,20 @@ def plan_and_write(domain: str, problem: str | None = None, fmt: str | None = No
         options = replace(options or PlannerOptions(), max_alternatives=max_alternatives)
     if no_search and options is not None:
         options = replace(options, search_stuck=False)
-    with Interrupts() as interrupted:
+    with Interrupts() as interrupted, HardDeadline(timeout or None) as limit:
         try:
             task = load(resolve(domain), *([problem] if problem is not None else []))
+            limit.phase = "planning"
+            left = max(0.001, timeout - process_age()) if timeout else None
             with collecting():
                 result = plan(task, seed=seed, max_expansions=max_expansions,
-                              max_ticks=max_ticks, timeout=timeout or None, options=options,
+                              max_ticks=max_ticks, timeout=left, options=options,
                               on_expansion=trace, stop=interrupted, last_resort=not no_search,
                               improve=not no_improve, say=progress.say)
+            limit.disarm()
+        except TimeLimitReached:
+            raise PlanningError(f"the time limit ({timeout:g} s) was reached while "
+                                f"{limit.phase}; nothing written") from None
         except Interrupted as error:
             stderr.print(f"[bold yellow]interrupted[/]: {escape(error.progress)}; "
                          "nothing written")

@@ -249,3 +249,18 @@ def test_no_improve_and_paper_keep_the_backchained_plan(tmp_path: Path) -> None:
         assert result.exit_code == 0, result.output
         assert "plan improvement" not in result.stderr
     assert len((tmp_path / "plan--no-improve").read_text().splitlines()) == 7 + 1
+
+
+def test_the_time_limit_holds_in_a_step_that_never_checks_it(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """Reading and grounding do not look at the clock; the hard limit stops them anyway,
+    with exit 1, the phase it stopped in, and nothing written."""
+    def endless_load(*paths: str) -> object:
+        while True:
+            pass
+
+    monkeypatch.setattr("btplan.acting.offline.load", endless_load)
+    result = runner.invoke(app, ["plan", str(DOMAINS / "pick_place.bt"), "--timeout", "0.3",
+                                 "-q"])
+    assert result.exit_code == 1, result.output
+    assert "the time limit (0.3 s) was reached while reading the task" in result.output
