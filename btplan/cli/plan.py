@@ -13,6 +13,7 @@ from btplan.cli.planning import (
     DEFAULT_TIMEOUT, Progress, default_format, plan_and_write, plan_text, summary,
 )
 from btplan.cli.typer_app import app, guarded
+from btplan.errors import PlanningError
 
 
 class Format(str, Enum):
@@ -83,16 +84,28 @@ def plan_command(
              "(exit 1); 0: no limit.")] = DEFAULT_TIMEOUT,
     quiet: Annotated[bool, typer.Option(
         "-q", "--quiet", help="No progress and no summary on standard error.")] = False,
+    max_memory: Annotated[str, typer.Option(
+        "--max-memory", metavar="SIZE",
+        help="Stop (exit 1) when the planner's memory would grow past SIZE (2G, 500M; 0: no "
+             "limit); by default 80% of the machine's memory.")] = "auto",
 ) -> None:
     """Build a reactive BT for the problem by planning and acting in the symbolic world.
 
     The tree goes to standard output (or -o FILE), the summary to standard error.
     Ctrl-C stops at the next tick: nothing is written, the summary says how far it got.
     """
-    plan_and_write(domain, problem, fmt.value if fmt is not None else None,
-                   out_alias if out_alias is not None else out, plan_out, trace_expansions,
-                   seed, max_expansions, max_ticks, max_alternatives, paper, no_search,
-                   timeout, quiet, no_improve)
+    from btplan.cli.resources import MemoryLimit, describe, parse_memory
+
+    limit = parse_memory(max_memory)
+    try:
+        with MemoryLimit(limit):
+            plan_and_write(domain, problem, fmt.value if fmt is not None else None,
+                           out_alias if out_alias is not None else out, plan_out,
+                           trace_expansions, seed, max_expansions, max_ticks, max_alternatives,
+                           paper, no_search, timeout, quiet, no_improve)
+    except MemoryError:
+        what = f"the memory limit ({describe(limit)}, --max-memory)" if limit else "memory"
+        raise PlanningError(f"{what} ran out while planning; nothing written") from None
 
 
 __all__ = ["DEFAULT_TIMEOUT", "Format", "Progress", "default_format", "plan_command",

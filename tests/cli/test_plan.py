@@ -264,3 +264,23 @@ def test_the_time_limit_holds_in_a_step_that_never_checks_it(
                                  "-q"])
     assert result.exit_code == 1, result.output
     assert "the time limit (0.3 s) was reached while reading the task" in result.output
+
+
+def test_a_memory_limit_stops_planning_with_exit_1_instead_of_the_oom_killer(
+        tmp_path: Path) -> None:
+    """200 generated blocks take about 700 MB to plan; under a 150 MB limit the command
+    ends with exit 1 naming the limit, and writes nothing. A process of its own: the
+    limit is the process's."""
+    import subprocess
+
+    for part, flag in (("d.pddl", "--domain-only"), ("p.pddl", "--problem-only")):
+        made = runner.invoke(app, ["generate", "blocksworld", "--blocks", "200", "--seed", "1",
+                                   flag, "-o", str(tmp_path / part)])
+        assert made.exit_code == 0, made.output
+    out = tmp_path / "tree.json"
+    done = subprocess.run([sys.executable, "-m", "btplan", "plan", str(tmp_path / "d.pddl"),
+                           str(tmp_path / "p.pddl"), "-q", "-o", str(out), "--timeout", "0",
+                           "--max-memory", "150M"], capture_output=True, text=True, check=False)
+    assert done.returncode == 1, done.stderr
+    assert "the memory limit (150 MB, --max-memory) ran out while planning" in done.stderr
+    assert "Traceback" not in done.stderr and not out.exists()
