@@ -99,11 +99,9 @@ class HardDeadline:
     def __enter__(self) -> Self:
         if self.seconds:
             try:
-                import signal as full_signal
-
-                self._previous = full_signal.signal(full_signal.SIGALRM, self._handle)
+                self._previous = signal.signal(signal.SIGALRM, self._handle)
                 left = max(0.01, self.seconds - process_age() + self.GRACE)
-                full_signal.setitimer(full_signal.ITIMER_REAL, left)
+                signal.setitimer(signal.ITIMER_REAL, left)
                 self._armed = True
             except ValueError:  # not the main thread: the planner's own checks only
                 pass
@@ -112,10 +110,8 @@ class HardDeadline:
     def disarm(self) -> None:
         """The limited work is done (what follows, writing the outputs, is not cut)."""
         if self._armed:
-            import signal as full_signal
-
-            full_signal.setitimer(full_signal.ITIMER_REAL, 0)
-            full_signal.signal(full_signal.SIGALRM, self._previous)
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, self._previous)
             self._armed = False
 
     def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
