@@ -221,6 +221,9 @@ class _Reader:
 
     def color(self, table: dict[str, Any]) -> tuple[float, float, float]:
         r, g, b = self.numbers(table.get("color", [0.6, 0.6, 0.6]), 3, "color")
+        if not all(0.0 <= c <= 1.0 for c in (r, g, b)):
+            raise self.fail("'color' is red, green and blue, each between 0 and 1", "color",
+                            f"got {[r, g, b]}")
         return (r, g, b)
 
     def name(self, table: dict[str, Any], kind: str) -> str:
@@ -256,6 +259,7 @@ class _Reader:
             near=self.scalar(robot, "near", 0.7, least=0.05),
         )
         self.check_names(scene)
+        self.check_cubes(scene)
         return scene
 
     def wall(self, t: dict[str, Any]) -> Box:
@@ -304,6 +308,34 @@ class _Reader:
         count = int(self.scalar(t, "count", 1, whole=True, least=1))
         delay = int(self.scalar(t, "delay", 0, whole=True))
         return Event(name, do, cube, to, tick, when, count, delay, origin)
+
+    def check_cubes(self, scene: Scene) -> None:
+        """Every placed cube inside the world, clear of the walls and of the other cubes:
+        a scene that puts one elsewhere fails as input, not later as a failed run."""
+        x0, x1, y0, y1 = scene.bounds
+        half = scene.cube_size / 2
+        placed = [c for c in scene.cubes if c.at is not None]
+        for i, cube in enumerate(placed):
+            assert cube.at is not None
+            x, y = cube.at
+            at = f'"{cube.name}"'
+            if not (x0 + half <= x <= x1 - half and y0 + half <= y <= y1 - half):
+                raise self.fail(f"cube '{shorten(cube.name)}' at {list(cube.at)} is outside the "
+                                f"world's bounds {list(scene.bounds)}", at)
+            for wall in scene.walls:
+                if wall.z >= scene.cube_size:
+                    continue  # a board above the floor: a cube may lie under it
+                (cx, cy), (sx, sy) = wall.center, wall.size
+                if abs(x - cx) < sx / 2 + half and abs(y - cy) < sy / 2 + half:
+                    raise self.fail(f"cube '{shorten(cube.name)}' at {list(cube.at)} is inside "
+                                    f"the wall '{shorten(wall.name)}'", at)
+            for other in placed[i + 1:]:
+                assert other.at is not None
+                if (abs(x - other.at[0]) < scene.cube_size
+                        and abs(y - other.at[1]) < scene.cube_size):
+                    raise self.fail(f"cubes '{shorten(cube.name)}' and '{shorten(other.name)}' "
+                                    f"overlap at {list(cube.at)} and {list(other.at)}",
+                                    f'"{other.name}"')
 
     def check_names(self, scene: Scene) -> None:
         seen: set[str] = set()

@@ -130,3 +130,32 @@ def test_a_scene_holds_a_bounded_number_of_things(tmp_path: Path) -> None:
                     for i in range(MAX_SCENE_ITEMS + 1))
     with pytest.raises(InputError, match=f"at most {MAX_SCENE_ITEMS}"):
         load_scene(write_scene(tmp_path, OPEN_ROOM + walls))
+
+
+WALLED = OPEN_ROOM + """
+[[wall]]
+name = "pillar"
+center = [3.0, -1.0]
+size = [0.4, 0.4]
+"""
+
+
+@pytest.mark.parametrize(("old", "new", "message", "line"), [
+    ("at = [2.0, 1.0]", "at = [9.0, 1.0]",
+     "cube 'green' at [9.0, 1.0] is outside the world's bounds", '"green"'),
+    ("at = [2.0, 1.0]", "at = [3.1, -1.0]", "cube 'green' at [3.1, -1.0] is inside the wall "
+     "'pillar'", '"green"'),
+    ('name = "blue"\n', 'name = "blue"\nat = [2.02, 1.01]\n',
+     "cubes 'green' and 'blue' overlap", '"blue"'),
+    ('name = "red"\n', 'name = "red"\ncolor = [1.0, 2.0, 0.0]\n',
+     "'color' is red, green and blue, each between 0 and 1", "color"),
+])
+def test_a_scene_that_places_a_cube_where_none_can_be_is_bad_input(
+        tmp_path: Path, old: str, new: str, message: str, line: str) -> None:
+    """Refused with the place to fix, not found later as a run that fails."""
+    text = WALLED.replace(old, new, 1)
+    with pytest.raises(InputError) as caught:
+        load_scene(write_scene(tmp_path, text))
+    assert message in str(caught.value)
+    assert caught.value.span is not None
+    assert line in text.split("\n")[caught.value.span.line - 1]
