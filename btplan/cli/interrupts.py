@@ -10,6 +10,7 @@ that too, because it is written line by line.
 from __future__ import annotations
 
 import os
+import time
 from types import FrameType, TracebackType
 
 TYPE_CHECKING = False
@@ -91,8 +92,14 @@ class HardDeadline:
 
     GRACE = 0.0
 
-    def __init__(self, seconds: float | None) -> None:
+    def __init__(self, seconds: float | None, started: float, grace: float | None = None
+                 ) -> None:
+        """`started`: the time.monotonic() the limit counts from (the command's start);
+        `grace`: seconds past the limit the timer waits (by default GRACE), for work
+        that stops itself at the limit on its next check (a run, at the next tick)."""
         self.seconds = seconds
+        self.started = started
+        self.grace = self.GRACE if grace is None else grace
         self.phase = "reading the task"
         self._armed = False
 
@@ -100,7 +107,8 @@ class HardDeadline:
         if self.seconds:
             try:
                 self._previous = signal.signal(signal.SIGALRM, self._handle)
-                left = max(0.01, self.seconds - process_age() + self.GRACE)
+                left = max(0.01, self.started + self.seconds + self.grace
+                           - time.monotonic())
                 signal.setitimer(signal.ITIMER_REAL, left)
                 self._armed = True
             except ValueError:  # not the main thread: the planner's own checks only
@@ -122,9 +130,15 @@ class HardDeadline:
         raise TimeLimitReached
 
 
+def process_start() -> float:
+    """The time.monotonic() at which this process started (its interpreter's start-up
+    included): the console script's limits count from there, as a user timing the
+    command does."""
+    return time.monotonic() - process_age()
+
+
 def process_age() -> float:
-    """Seconds since this process started (its interpreter's start-up included): a time
-    limit counts from the command, as a user timing it does. 0 where /proc is missing."""
+    """Seconds since this process started. 0 where /proc is missing."""
     try:
         with open("/proc/self/stat", "rb") as handle:
             fields = handle.read().rsplit(b")", 1)[1].split()

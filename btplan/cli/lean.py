@@ -29,6 +29,7 @@ _VALUED = {
     "--plan-out": "plan_out", "--trace-expansions": "trace_expansions", "--seed": "seed",
     "--max-expansions": "max_expansions", "--max-ticks": "max_ticks",
     "--max-alternatives": "max_alternatives", "--timeout": "timeout",
+    "--max-memory": "max_memory",
 }
 _FLAGS = {"--paper": "paper", "--no-search": "no_search", "--no-improve": "no_improve",
           "-q": "quiet", "--quiet": "quiet"}
@@ -118,10 +119,11 @@ def plan_fast(args: list[str]) -> int | None:
     if arguments is None:
         return None
     from btplan.cli.edge import exit_code_for
+    from btplan.cli.interrupts import process_start
     from btplan.cli.planning import plan_and_write
 
     try:
-        plan_and_write(**arguments)
+        plan_and_write(**arguments, started=process_start())
     except (Exception, KeyboardInterrupt) as error:
         return exit_code_for(error)
     return 0

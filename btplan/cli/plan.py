@@ -13,7 +13,6 @@ from btplan.cli.planning import (
     DEFAULT_TIMEOUT, Progress, default_format, plan_and_write, plan_text, summary,
 )
 from btplan.cli.typer_app import app, guarded
-from btplan.errors import PlanningError
 
 
 class Format(str, Enum):
@@ -94,18 +93,10 @@ def plan_command(
     The tree goes to standard output (or -o FILE), the summary to standard error.
     Ctrl-C stops at the next tick: nothing is written, the summary says how far it got.
     """
-    from btplan.cli.resources import MemoryLimit, describe, parse_memory
-
-    limit = parse_memory(max_memory)
-    try:
-        with MemoryLimit(limit):
-            plan_and_write(domain, problem, fmt.value if fmt is not None else None,
-                           out_alias if out_alias is not None else out, plan_out,
-                           trace_expansions, seed, max_expansions, max_ticks, max_alternatives,
-                           paper, no_search, timeout, quiet, no_improve)
-    except MemoryError:
-        what = f"the memory limit ({describe(limit)}, --max-memory)" if limit else "memory"
-        raise PlanningError(f"{what} ran out while planning; nothing written") from None
+    plan_and_write(domain, problem, fmt.value if fmt is not None else None,
+                   out_alias if out_alias is not None else out, plan_out, trace_expansions,
+                   seed, max_expansions, max_ticks, max_alternatives, paper, no_search,
+                   timeout, quiet, no_improve, max_memory)
 
 
 __all__ = ["DEFAULT_TIMEOUT", "Format", "Progress", "default_format", "plan_command",

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from btplan.cli.console import escape
 from btplan.cli.edge import CommandExit, stderr
-from btplan.cli.interrupts import HardDeadline, Interrupts, TimeLimitReached, process_age
+from btplan.cli.interrupts import HardDeadline, Interrupts, TimeLimitReached
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Interrupted, PlanningError
 from btplan.records import replace
@@ -38,8 +38,29 @@ def plan_and_write(domain: str, problem: str | None = None, fmt: str | None = No
                    max_expansions: int = 1000, max_ticks: int = 100_000,
                    max_alternatives: int | None = None, paper: bool = False,
                    no_search: bool = False, timeout: float = DEFAULT_TIMEOUT,
-                   quiet: bool = False, no_improve: bool = False) -> None:
-    """The command `btplan plan`, its arguments read and typed (see its --help)."""
+                   quiet: bool = False, no_improve: bool = False, max_memory: str = "auto",
+                   started: float | None = None) -> None:
+    """The command `btplan plan`, its arguments read and typed (see its --help);
+    `started`: the time.monotonic() the time limit counts from (default: now)."""
+    from btplan.cli.resources import MemoryLimit, describe, parse_memory
+
+    limit = parse_memory(max_memory)
+    try:
+        with MemoryLimit(limit):
+            _plan_and_write(domain, problem, fmt, out, plan_out, trace_expansions, seed,
+                            max_expansions, max_ticks, max_alternatives, paper, no_search,
+                            timeout, quiet, no_improve,
+                            time.monotonic() if started is None else started)
+    except MemoryError:
+        what = f"the memory limit ({describe(limit)}, --max-memory)" if limit else "memory"
+        raise PlanningError(f"{what} ran out while planning; nothing written") from None
+
+
+def _plan_and_write(domain: str, problem: str | None, fmt: str | None, out: str,
+                    plan_out: str | None, trace_expansions: str | None, seed: int,
+                    max_expansions: int, max_ticks: int, max_alternatives: int | None,
+                    paper: bool, no_search: bool, timeout: float, quiet: bool,
+                    no_improve: bool, started: float) -> None:
     # Imported here, not at the top: the typer app imports this module to build the
     # command line, and the planner, the trees and their formats serve only this command.
     from btplan.acting.offline import load, plan
@@ -73,11 +94,11 @@ def plan_and_write(domain: str, problem: str | None = None, fmt: str | None = No
         options = replace(options or PlannerOptions(), max_alternatives=max_alternatives)
     if no_search and options is not None:
         options = replace(options, search_stuck=False)
-    with Interrupts() as interrupted, HardDeadline(timeout or None) as limit:
+    with Interrupts() as interrupted, HardDeadline(timeout or None, started) as limit:
         try:
             task = load(resolve(domain), *([problem] if problem is not None else []))
             limit.phase = "planning"
-            left = max(0.001, timeout - process_age()) if timeout else None
+            left = (max(0.001, started + timeout - time.monotonic()) if timeout else None)
             with collecting():
                 result = plan(task, seed=seed, max_expansions=max_expansions,
                               max_ticks=max_ticks, timeout=left, options=options,

@@ -15,7 +15,7 @@ import typer
 
 from btplan.cli.typer_app import EXIT_FAILED, app, guarded, stderr
 from btplan.cli.console import escape
-from btplan.cli.interrupts import Interrupts
+from btplan.cli.interrupts import HardDeadline, Interrupts, TimeLimitReached
 from btplan.cli.outputs import LineStream, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Interrupted, Span, WorldError
 from btplan.io import read_text, stream_of, write_stream
@@ -126,6 +126,7 @@ def run(
     halted, the trace and the plan keep every finished tick, the summary is printed,
     and the exit code is 130 (143).
     """
+    started = time.monotonic()  # the time limit counts from here
     # The acting layer and the worlds are imported here: every command's module is
     # imported when btplan starts, and only this command (and sweep) acts.
     from btplan import acting
@@ -167,7 +168,8 @@ def run(
         else:
             world, scene_agents = open_world(task, sim, scene, seed, gui, record,
                                              probabilities(fail_prob))
-        deadline = None if timeout is None else time.monotonic() + timeout
+        # counted from the start of the command, as plan's: opening the world included
+        deadline = None if timeout is None else started + timeout
 
         files = RunFiles(trace, plan_out, interrupted)
 
@@ -179,8 +181,15 @@ def run(
                           preset="paper" if paper else preset, quiet=quiet,
                           world_name=WORLD_NAMES[sim] if world_spec is None else world_spec)
         try:
-            with files:
+            # The run stops itself at the tick after the budget; the timer is for a tick
+            # that does not end (a long expansion): skills are halted on the way out.
+            with files, HardDeadline(timeout, started, grace=TICK_GRACE) as limit:
+                limit.phase = "a tick"
                 result = _act(task, world, specs, scene_agents, settings, files.add, stop)
+        except TimeLimitReached:
+            stderr.print(f"[bold red]failed:[/] the time budget ({timeout:g} s) ran out in "
+                         "the middle of a tick; the running skills were halted")
+            raise typer.Exit(EXIT_FAILED) from None
         except Interrupted as stopped:  # a signal while the trace pipe had no reader
             stderr.print(f"[bold yellow]interrupted[/] {escape(stopped.progress)}")
             raise typer.Exit(interrupted.exit_code) from None
@@ -204,6 +213,9 @@ def run(
 
 
 WORLD_NAMES = {"symbolic": "the symbolic world", "pybullet": "the PyBullet world"}
+
+TICK_GRACE = 0.4
+"""Seconds past --timeout before a tick that has not ended is cut short."""
 
 
 class RunFiles:

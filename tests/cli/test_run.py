@@ -250,3 +250,19 @@ def test_the_pybullet_world_on_a_domain_it_does_not_serve_points_at_your_own_rob
     assert other.exit_code == 2
     assert "cannot measure: at, delivered" in other.output and "--world" in other.output
     assert "Traceback" not in other.output
+
+
+def test_a_tick_that_does_not_end_is_cut_by_the_time_budget(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """The run stops itself at the first tick after --timeout; a tick that never ends
+    (an expansion that goes on and on) is cut by the timer, the skills halted."""
+    from btplan.acting.loop import BlendedLoop
+
+    def endless(self: BlendedLoop) -> None:
+        while True:
+            pass
+
+    monkeypatch.setattr(BlendedLoop, "tick", endless)
+    result = runner.invoke(app, ["run", PICK_PLACE, "-q", "--timeout", "0.2"])
+    assert result.exit_code == 1, result.output
+    assert "the time budget (0.2 s) ran out in the middle of a tick" in result.output
