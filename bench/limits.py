@@ -1,0 +1,83 @@
+"""Whether `btplan plan --timeout` holds, and how much memory it takes, on wide problems.
+
+A wide problem has many objects and a short plan: gripper with N balls in room a and
+one ball wanted in room b (pick, move, drop). Both planners run as whole processes on
+the same PDDL files; btplan with `--timeout T`, pyperplan (GBFS with h_FF) killed at T.
+The table gives each one's wall seconds, exit, and peak RSS; for btplan also how far
+past the limit it ended (the target: within 10% of T, or 0.5 s).
+
+    python bench/limits.py                      # N = 10^2 .. 10^5, T = 5 s
+    python bench/limits.py --sizes 100 1000 --timeout 2
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from corpus import command, measure  # noqa: E402  (the whole-process runner, shared)
+
+DOMAIN = """(define (domain gripper)
+  (:requirements :strips :typing)
+  (:types room ball gripper)
+  (:predicates (at-robby ?r - room) (at ?b - ball ?r - room) (free ?g - gripper)
+               (carry ?b - ball ?g - gripper))
+  (:action move :parameters (?from ?to - room)
+    :precondition (at-robby ?from)
+    :effect (and (at-robby ?to) (not (at-robby ?from))))
+  (:action pick :parameters (?b - ball ?r - room ?g - gripper)
+    :precondition (and (at ?b ?r) (at-robby ?r) (free ?g))
+    :effect (and (carry ?b ?g) (not (at ?b ?r)) (not (free ?g))))
+  (:action drop :parameters (?b - ball ?r - room ?g - gripper)
+    :precondition (and (carry ?b ?g) (at-robby ?r))
+    :effect (and (at ?b ?r) (free ?g) (not (carry ?b ?g)))))
+"""
+
+
+def problem(balls: int) -> str:
+    names = " ".join(f"b{i}" for i in range(balls))
+    at = " ".join(f"(at b{i} a)" for i in range(balls))
+    return (f"(define (problem wide-{balls}) (:domain gripper)\n"
+            f"  (:objects a b - room left right - gripper {names} - ball)\n"
+            f"  (:init (at-robby a) (free left) (free right) {at})\n"
+            "  (:goal (at b0 b)))\n")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+    parser.add_argument("--sizes", type=int, nargs="+", default=[100, 1000, 10_000, 100_000])
+    parser.add_argument("--timeout", type=float, default=5.0)
+    args = parser.parse_args(argv)
+    limit = args.timeout
+    print(f"gripper, N balls in room a, goal: one ball in room b; --timeout {limit:g} s")
+    print(f"{'N':>7} | {'btplan s':>8} {'exit':>4} {'past T':>6} {'peak MB':>8} | "
+          f"{'pyperplan s':>11} {'exit':>4} {'peak MB':>8}")
+    held = True
+    with tempfile.TemporaryDirectory() as work:
+        folder = Path(work)
+        domain = folder / "domain.pddl"
+        domain.write_text(DOMAIN)
+        for balls in args.sizes:
+            task = folder / f"p{balls}.pddl"
+            task.write_text(problem(balls))
+            cells = []
+            for planner in ("btplan", "pyperplan"):
+                argv_ = command(planner, domain, task, str(folder / "plan.txt"), limit)
+                code, seconds, rss, _ = measure(argv_, limit + 30 if planner == "btplan"
+                                                else limit, work)
+                cells.append((code, seconds, rss))
+            (code, seconds, rss), (p_code, p_seconds, p_rss) = cells
+            past = seconds - limit
+            held &= past <= max(0.1 * limit, 0.5)
+            print(f"{balls:>7} | {seconds:>8.2f} {str(code):>4} {past:>+6.2f} {rss:>8.1f} | "
+                  f"{p_seconds:>11.2f} {'kill' if p_code is None else p_code:>4} "
+                  f"{p_rss:>8.1f}")
+    print(f"--timeout held within 10% or 0.5 s on every size: {'yes' if held else 'no'}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
