@@ -21,8 +21,8 @@ from collections.abc import Sequence
 from typing import Any
 
 from btplan import acting
-from btplan.baselines import run_baseline
 from btplan.acting.config import ActingConfig
+from btplan.baselines import run_baseline
 from btplan.sweep.runs import Job, prepared
 from btplan.worlds.symbolic import SymbolicWorld
 

@@ -21,11 +21,10 @@ TYPE_CHECKING = False
 if TYPE_CHECKING:
     from typing import Any
 
-    from btplan.acting.offline import PlanResult, PlanStats
     from btplan.acting.clock import FakeClock
     from btplan.acting.config import ActingConfig
     from btplan.acting.loop import BlendedLoop, Expansion, TickReport
-    from btplan.acting.offline import load, plan
+    from btplan.acting.offline import PlanResult, PlanStats, load, plan
     from btplan.acting.online import ACTING_OPTIONS, RunOutcome, run, task_models
 
 _HOMES = {"ActingConfig": "config", "FakeClock": "clock", "BlendedLoop": "loop",

@@ -8,9 +8,9 @@ from typing import Annotated
 
 import typer
 
-from btplan.cli.typer_app import app, guarded, stderr
 from btplan.cli.console import escape
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
+from btplan.cli.typer_app import app, guarded, stderr
 from btplan.errors import InputError, Span
 from btplan.io import read_text
 

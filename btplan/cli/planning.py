@@ -22,8 +22,8 @@ from btplan.records import replace
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from btplan.acting.offline.attempt import PlanResult, PlanStats
     from btplan.acting.loop import Expansion
+    from btplan.acting.offline.attempt import PlanResult, PlanStats
     from btplan.bt import BehaviorTree
 
 DEFAULT_TIMEOUT = 300.0

@@ -13,10 +13,10 @@ from typing import TYPE_CHECKING, Annotated, Any, Self
 
 import typer
 
-from btplan.cli.typer_app import EXIT_FAILED, app, guarded, stderr
 from btplan.cli.console import escape
 from btplan.cli.interrupts import HardDeadline, Interrupts, TimeLimitReached
 from btplan.cli.outputs import LineStream, Output, check_outputs, write_atomic
+from btplan.cli.typer_app import EXIT_FAILED, app, guarded, stderr
 from btplan.errors import InputError, Interrupted, Span, WorldError
 from btplan.io import read_text, stream_of, write_stream
 

@@ -182,8 +182,8 @@ def sweep(
         TimeRemainingColumn,
     )
 
-    from btplan.baselines import BASELINES
     from btplan.acting.strips import require_pyperplan
+    from btplan.baselines import BASELINES
     from btplan.shipped import resolve
     from btplan.sweep import explain, output, pool
     from btplan.sweep.journal import RowJournal

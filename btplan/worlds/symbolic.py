@@ -26,8 +26,8 @@ from btplan.model import (
     matches,
 )
 from btplan.robot.contract import Capabilities
-from btplan.worlds.logs import RecentLog
 from btplan.robot.refine import ConstraintRefiner, holds
+from btplan.worlds.logs import RecentLog
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:

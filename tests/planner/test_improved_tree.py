@@ -7,8 +7,8 @@ from __future__ import annotations
 import random
 from pathlib import Path
 
-from btplan.acting.offline.improved import budget, plan_first
 from btplan.acting.offline import load, plan
+from btplan.acting.offline.improved import budget, plan_first
 from btplan.bt import RUNNING, BehaviorTree, Fallback, Status
 from btplan.bt import Sequence as SequenceNode
 from btplan.bt.world import LeafKey

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from btplan.acting.offline import planning as offline
 from btplan.acting.offline import load, plan
+from btplan.acting.offline import planning as offline
 from btplan.errors import NoAchieverError
 from btplan.model import GroundLiteral, Task
 from btplan.planner import AchieverIndex, PlannerOptions

@@ -19,7 +19,7 @@ from typer.testing import CliRunner
 
 import btplan
 from btplan.acting import ActingConfig, FakeClock
-from btplan.bt import FAILURE, RUNNING, SUCCESS, LeafKey, Status
+from btplan.bt import RUNNING, SUCCESS, LeafKey, Status
 from btplan.cli import app
 from btplan.errors import InputError, WorldError
 from btplan.model import Atom

@@ -8,12 +8,11 @@ from typing import Any
 import pytest
 
 from btplan import run
+from btplan.acting.config import ActingConfig
 from btplan.acting.offline import load
 from btplan.errors import InputError
 from btplan.model import Atom
-from btplan.planner import PlannerOptions
 from btplan.worlds.agents import Disturbance
-from btplan.acting.config import ActingConfig
 from tests.presets import departures
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"

@@ -57,7 +57,6 @@ def test_growing_the_tree_within_a_tick_acts_as_soon_as_a_planner_would() -> Non
     grown tree is ticked again at once, and the undisturbed run is as short as the plan's."""
     from btplan.acting import run
     from btplan.planner import PlannerOptions
-
     from tests.presets import departures
 
     paper = run(TASK, max_ticks=50, config=departures(PlannerOptions()))

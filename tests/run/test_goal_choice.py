@@ -9,7 +9,6 @@ from pathlib import Path
 from btplan import run
 from btplan.acting import ACTING_OPTIONS
 from btplan.acting.departures.credit import credit_goals
-from btplan.acting.offline import load
 from btplan.acting.departures.prepare import (
     RelaxedPlans,
     give_up,
@@ -17,6 +16,7 @@ from btplan.acting.departures.prepare import (
     prepared,
     relaxed_plan,
 )
+from btplan.acting.offline import load
 from btplan.bt import Action, Fallback, Sequence
 from btplan.model import Atom, GroundLiteral, Task
 from btplan.planner import AchieverIndex

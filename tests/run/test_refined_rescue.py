@@ -14,8 +14,8 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from btplan.acting import load
-from btplan.acting.loop import BlendedLoop
 from btplan.acting.departures.refined_search import RefinedSearch, refines_for
+from btplan.acting.loop import BlendedLoop
 from btplan.model import ActionTemplate, Atom, GroundAction, GroundLiteral, Parameter
 from btplan.planner.expand import literal_of
 from btplan.planner.rescue import regress

@@ -7,8 +7,8 @@ from pathlib import Path
 
 from btplan import run
 from btplan.acting import ACTING_OPTIONS
-from btplan.acting.offline import load
 from btplan.acting.departures.watch import broken_ahead
+from btplan.acting.offline import load
 from btplan.bt import RUNNING, Action, Condition, Fallback, Node, Sequence, Status
 from btplan.bt.world import LeafKey
 from btplan.model import Atom

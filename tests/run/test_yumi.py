@@ -13,8 +13,8 @@ from pathlib import Path
 
 from btplan.acting.offline import load, plan
 from btplan.acting.online import RunOutcome, run
-from tests.presets import ALGORITHM_1
 from btplan.model import Literal, Task
+from tests.presets import ALGORITHM_1
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 YUMI = load(str(DOMAINS / "yumi.bt"))

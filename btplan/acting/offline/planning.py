@@ -18,8 +18,8 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
-from btplan.acting.offline.attempt import PlanResult, Run, SearchFound, attempt
 from btplan.acting.loop import Expansion
+from btplan.acting.offline.attempt import PlanResult, Run, SearchFound, attempt
 from btplan.acting.offline.whole_goal import EarlySlice, SearchTurns, WholeGoalSearch
 from btplan.bt import BehaviorTree
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError

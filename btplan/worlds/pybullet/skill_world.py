@@ -15,9 +15,9 @@ from typing import Generic, Protocol, TypeVar
 from btplan.bt.status import FAILURE, RUNNING, Status
 from btplan.errors import WorldError
 from btplan.model import Atom, GroundAction, Task, instantiate
+from btplan.worlds.logs import RecentLog
 from btplan.worlds.pybullet import motion
 from btplan.worlds.pybullet.skills import Skill
-from btplan.worlds.logs import RecentLog
 
 Key = tuple[str, tuple[str, ...]]
 

@@ -14,8 +14,8 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from btplan.acting.offline import load
 from btplan.acting.config import ActingConfig
+from btplan.acting.offline import load
 from btplan.acting.online import RunOutcome, run
 from btplan.cli import app
 from btplan.model import Task
