@@ -10,6 +10,7 @@ and the traceback only with `--debug` or BTPLAN_DEBUG=1.
 
 from __future__ import annotations
 
+import errno
 import os
 import sys
 
@@ -92,6 +93,10 @@ def format_input_error(error: InputError) -> str:
     return "\n".join(lines)
 
 
+_ENVIRONMENT = {errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EIO, errno.EFBIG}
+"""Errors of the machine a command runs on, rather than of btplan."""
+
+
 def one_line(text: str) -> str:
     """`text` with its control characters written as escapes (`\\n`): a path or a name
     with a newline in it must not break the one line a script reads."""
@@ -144,6 +149,13 @@ def exit_code_for(error: BaseException) -> int:
     if isinstance(error, KeyboardInterrupt):
         stderr.print("[bold yellow]interrupted[/]")
         return EXIT_INTERRUPTED
+    if isinstance(error, OSError) and error.errno in _ENVIRONMENT:
+        # The user's environment (a full disk, a file system gone read-only), not a bug:
+        # outputs are written whole or not at all, so the files it would replace are kept.
+        where = f"{error.filename}: " if error.filename is not None else ""
+        stderr.print(f"[bold red]error:[/] {escape(one_line(where))}"
+                     f"{escape(error.strerror or str(error))}; nothing was replaced")
+        return EXIT_BAD_INPUT
     if isinstance(error, BrokenPipeError):
         # The reader of standard output stopped early (`| head`): not an error, as
         # for ripgrep; later writes (at exit) go nowhere instead of failing again.

@@ -323,3 +323,23 @@ def test_a_trace_pipe_with_a_reader_gets_every_line(tmp_path: Path) -> None:
         stream.write_line('{"tick": 2}')
     reader.join()
     assert got == ['{"tick": 1}', '{"tick": 2}']
+
+
+def test_a_full_disk_when_the_tree_is_written_is_exit_2_and_keeps_the_old_file(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    import errno
+
+    import btplan.io
+
+    tree = tmp_path / "t.json"
+    tree.write_text("the old tree\n")
+
+    def full_disk(path: str, data: bytes) -> None:
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(btplan.io, "write_bytes_atomic", full_disk)
+    result = runner.invoke(app, ["plan", PICK, "-q", "-o", str(tree)])
+    assert result.exit_code == 2, result.output
+    assert "No space left on device; nothing was replaced" in result.output
+    assert tree.read_text() == "the old tree\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["t.json"]
