@@ -256,10 +256,11 @@ def print_checks(rows: list[Row]) -> None:
 
 
 def slow_skill(task: Task, skill_ticks: list[int], button_ticks: int, max_ticks: int) -> None:
-    print(f"{'skill ticks':>11} {'preset':<16} {'ticks':>5} {'goal':>4} {'halted':>6} "
+    print(f"{'skill ticks':>11} {'preset':<18} {'ticks':>5} {'goal':>4} {'halted':>6} "
           f"{'cancels':>7} {'failed':>6} {'exec':>4}  executed (* credited by observation)")
     for ticks in skill_ticks:
         for label, config in (("before: paper", ActingConfig.paper()),
+                              ("before: algorithm1", ActingConfig.algorithm1()),
                               ("after: default", ActingConfig.default())):
             robot = FetchCupRobot(ticks, button_ticks)
             outcome = btplan.run(task, world=robot, config=config, max_ticks=max_ticks)
@@ -272,7 +273,7 @@ def slow_skill(task: Task, skill_ticks: list[int], button_ticks: int, max_ticks:
                     observed.remove(name)
                     name += "*"
                 shown.append(name)
-            print(f"{ticks:>11} {label:<16} {outcome.ticks:>5} "
+            print(f"{ticks:>11} {label:<18} {outcome.ticks:>5} "
                   f"{'yes' if outcome.reached else 'no':>4} {s.count('halted'):>6} "
                   f"{len(robot.cancels):>7} {s.count('failed'):>6} {len(outcome.executed):>4}  "
                   + ", ".join(shown))
