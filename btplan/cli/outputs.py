@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import errno
 import os
+import re
 import stat
 import time
 from collections.abc import Callable, Sequence
@@ -76,6 +77,27 @@ def check_outputs(*outputs: Output, inputs: Sequence[str] = ()) -> None:
         if key in seen:
             raise InputError(f"{seen[key]} and {output.flag} both write to {output.path}")
         seen[key] = output.flag
+    for output in given:
+        if output.folder and output.path is not None:
+            _check_folder_files(output, [*inputs, *(o.path for o in given
+                                                     if o is not output and o.path)])
+
+
+FOLDER_FILE = re.compile(r"expansion_\d{3,}\.(dot|json)")
+"""The files a folder output holds (`--trace-expansions`: one pair per expansion)."""
+
+
+def _check_folder_files(output: Output, others: Sequence[str]) -> None:
+    """Refuse an input or another output that the folder's files would overwrite."""
+    assert output.path is not None
+    folder = Path(output.path).resolve()
+    for other in others:
+        if other == STDIO or stream_of(other) is not None:
+            continue
+        target = Path(other).resolve()
+        if target.parent == folder and FOLDER_FILE.fullmatch(target.name):
+            raise InputError(f"{output.flag} {output.path} would overwrite {other}",
+                             hint="give the expansions a folder of their own")
 
 
 def identity(path: str) -> object:

@@ -343,3 +343,15 @@ def test_a_full_disk_when_the_tree_is_written_is_exit_2_and_keeps_the_old_file(
     assert "No space left on device; nothing was replaced" in result.output
     assert tree.read_text() == "the old tree\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.json"]
+
+
+def test_the_expansion_folder_may_not_overwrite_an_input_or_an_output(tmp_path: Path) -> None:
+    steps = tmp_path / "steps"
+    steps.mkdir()
+    domain = steps / "expansion_001.json"
+    domain.write_text(Path(PICK).read_text())
+    result = runner.invoke(app, ["plan", str(domain), "-q", "--trace-expansions", str(steps)])
+    assert result.exit_code == 2 and "would overwrite" in result.output
+    other = runner.invoke(app, ["plan", PICK, "-q", "-o", str(steps / "expansion_002.dot"),
+                                "--trace-expansions", str(steps)])
+    assert other.exit_code == 2 and "would overwrite" in other.output
