@@ -53,18 +53,53 @@ def node_label(node: Node, status: Status | None, new: bool) -> Text:
     return label
 
 
-def tree_view(root: Node, reached: Mapping[int, Status], old: frozenset[int]) -> Tree:
-    """The whole tree; `reached` maps id(node) to its status this tick, `old` the ids seen before."""
+def negated(node: Node) -> Node | None:
+    """The condition under an Inverter that holds only it (`not blocks(_, t)`), else None."""
+    if node.kind == "Inverter" and len(node.children) == 1 and \
+            node.children[0].kind == "Condition":
+        return node.children[0]
+    return None
+
+
+def tree_view(root: Node, reached: Mapping[int, Status], old: frozenset[int],
+              fold: bool = False) -> Tree:
+    """The tree; `reached` maps id(node) to its status this tick, `old` the ids seen before.
+
+    A negated condition is one line, `(not blocks(_, t))`, with the Inverter's own status
+    (the condition under it answers the opposite). With `fold`, the children a tick did
+    not reach are one line each run of them (`… 12 not reached`): a tree taller than the
+    terminal then shows the branch that runs."""
 
     def label(node: Node) -> Text:
-        return node_label(node, reached.get(id(node)), bool(old) and id(node) not in old)
+        new = bool(old) and id(node) not in old
+        inner = negated(node)
+        if inner is None:
+            return node_label(node, reached.get(id(node)), new)
+        status = reached.get(id(node))
+        text = Text(f"(not {inner.name})", style=STYLE[status] if status is not None else "dim")
+        if status is not None:
+            text.append(f"  {status.value}", style=STYLE[status])
+        if new:
+            text.append("  new", style="bold cyan")
+        return text
 
     top = Tree(label(root), guide_style="dim")
     stack: list[tuple[Node, Tree]] = [(root, top)]
     while stack:
         node, branch = stack.pop()
+        if negated(node) is not None:
+            continue
+        hidden = 0
         for child in node.children:
+            if fold and id(child) not in reached:
+                hidden += len(child.walk())
+                continue
+            if hidden:
+                branch.add(Text(f"… {hidden} not reached", style="dim"))
+                hidden = 0
             stack.append((child, branch.add(label(child))))
+        if hidden:
+            branch.add(Text(f"… {hidden} not reached", style="dim"))
     return top
 
 
@@ -89,19 +124,24 @@ def disturbance_view(recent: list[Disturbance]) -> Table:
 
 def frame(root: Node, reached: Mapping[int, Status], record: TickRecord,
           recent: list[Disturbance], old: frozenset[int] = frozenset(),
-          expansions: int = 0) -> RenderableType:
-    """One screen: a header line, the tree, the facts that changed, the latest disturbances."""
+          expansions: int = 0, rows: int | None = None) -> RenderableType:
+    """One screen: a header line, the facts that changed, the latest disturbances, then
+    the tree. Below the tree, a terminal too short cuts only the tree; with `rows` (the
+    terminal's height), a tree taller than the room left folds what the tick did not
+    reach."""
     header = Text(f"tick {record.tick}  ", style="bold")
     header.append(record.status, style=STYLE.get(Status(record.status), ""))
     header.append(f"   expansions {expansions}", style="bold")
     if record.expansions:
         grown = ", ".join(e.condition for e in record.expansions)
         header.append(f"   (grew at {grown})", style="bold cyan")
-    parts: list[RenderableType] = [header, tree_view(root, reached, old),
-                                   Text("facts: ", style="bold") + facts_view(record)]
+    parts: list[RenderableType] = [header, Text("facts: ", style="bold") + facts_view(record)]
     if recent:
         parts.append(Text("disturbances:", style="bold"))
         parts.append(disturbance_view(recent))
+    room = None if rows is None else rows - 2 - (2 + len(recent) if recent else 0)
+    parts.append(tree_view(root, reached, old,
+                           fold=room is not None and len(root.walk()) > room))
     return Group(*parts)
 
 
@@ -113,7 +153,8 @@ class LiveView:
         self.recent: deque[Disturbance] = deque(maxlen=history)
         self.expansions = 0
         self._seen: frozenset[int] = frozenset()
-        self._live = Live(console=console, auto_refresh=False, transient=False)
+        self._live = Live(console=console, auto_refresh=False, transient=False,
+                          vertical_overflow="crop")
 
     def __enter__(self) -> Self:
         self._live.__enter__()
@@ -126,6 +167,7 @@ class LiveView:
     def show(self, root: Node, reached: Mapping[int, Status], record: TickRecord) -> None:
         self.recent.extend(record.disturbances)
         self.expansions += len(record.expansions)
-        view = frame(root, reached, record, list(self.recent), self._seen, self.expansions)
+        view = frame(root, reached, record, list(self.recent), self._seen, self.expansions,
+                     rows=self.console.height)
         self._live.update(view, refresh=True)
         self._seen = frozenset(id(n) for n in root.walk())

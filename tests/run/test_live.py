@@ -55,3 +55,28 @@ def test_the_live_view_draws_each_tick_on_its_console() -> None:
         live.show(root, {id(holding): FAILURE}, TickRecord(tick=1, status="FAILURE"))
         live.show(root, {id(pick): RUNNING}, TickRecord(tick=2, status="RUNNING"))
     assert "tick 2  RUNNING" in console.export_text()
+
+
+def test_a_negated_condition_is_one_line_with_the_inverters_own_status() -> None:
+    from btplan.bt.decorators import Inverter
+
+    blocked = Condition("blocks", ("_", "t"))
+    guard = Inverter(blocked)
+    root = Sequence([guard, Action("MoveTo", ("goal", "t"))])
+    text = text_of(frame(root, {id(guard): FAILURE, id(blocked): RUNNING}, TickRecord(
+        tick=3, status="FAILURE"), []))
+    assert "(not blocks(_, t))  FAILURE" in text
+    assert "(blocks(_, t))" not in text.replace("(not blocks(_, t))", "")
+
+
+def test_a_tree_taller_than_the_terminal_keeps_the_facts_and_shows_the_running_branch() -> None:
+    ran = Action("Run", ())
+    idle = [Sequence([Condition("c", (str(i),)), Action("A", (str(i),))]) for i in range(30)]
+    root = Fallback([*idle[:15], Sequence([ran]), *idle[15:]])
+    record = TickRecord(tick=9, status="RUNNING", added=("moved()",))
+    text = text_of(frame(root, {id(root): RUNNING, id(root.children[15]): RUNNING,
+                                id(ran): RUNNING}, record, [], rows=20))
+    lines = text.splitlines()
+    assert lines[1].startswith("facts: +moved()")  # above the tree: never cut off
+    assert "[Run]  RUNNING" in text
+    assert "… 45 not reached" in text and len(lines) < 20
