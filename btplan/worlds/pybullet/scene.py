@@ -134,6 +134,10 @@ KEYS: dict[str, tuple[str, ...]] = {
 _LITERAL = re.compile(r"^\s*(not\s+)?[A-Za-z_]\w*\s*(\(\s*(\w+\s*(,\s*\w+\s*)*)?\))?\s*$")
 
 
+MAX_CUBE_SIZE = 0.07
+"""The widest cube the Panda's fingers close on (they open 0.04 m each, less a margin)."""
+
+
 def load_scene(path: str | Path) -> Scene:
     """Read and check a scene file; raises InputError with the place to fix.
 
@@ -258,6 +262,10 @@ class _Reader:
             cube_size=self.scalar(world, "cube_size", 0.05, least=0.01),
             near=self.scalar(robot, "near", 0.7, least=0.05),
         )
+        if scene.cube_size > MAX_CUBE_SIZE:
+            raise self.fail(f"cubes of {scene.cube_size:g} m do not fit between the fingers "
+                            f"(at most {MAX_CUBE_SIZE:.2f} m)", "cube_size",
+                            "lower [world] cube_size")
         self.check_names(scene)
         self.check_cubes(scene)
         return scene

@@ -19,7 +19,7 @@ from typing import Any
 
 from btplan.errors import WorldError
 from btplan.worlds.pybullet.motion import Pose2
-from btplan.worlds.pybullet.robot import OPEN, Robot
+from btplan.worlds.pybullet.robot import Robot
 from btplan.worlds.pybullet.scene import Point, Scene
 
 HZ = 240            # physics steps per simulated second
@@ -86,9 +86,6 @@ class Sim:
 
         self.p = p
         self.scene = scene
-        if scene.cube_size > 2 * OPEN - 0.01:
-            raise WorldError(f"cubes of {scene.cube_size} m do not fit between the fingers "
-                             f"(at most {2 * OPEN - 0.01:.2f} m); lower [world] cube_size")
         if gui and sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
             raise WorldError("--gui needs a display (DISPLAY is not set); run headless instead")
         with quiet_stdout():

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 
-from btplan.errors import WorldError
+from btplan.errors import InputError, Span, WorldError
 from btplan.model import Task
 from btplan.worlds.pybullet.geometry import distance
 from btplan.worlds.pybullet.motion import Pose2
@@ -116,8 +116,9 @@ class SceneState:
         poses = set(self.task.objects_of(self.type_of("pose")))
         for name in self.task.objects_of(self.type_of("location")):
             if name not in known and name not in poses:
-                raise WorldError(f"{name!r} is a location in the problem but not in the scene "
-                                 f"{self.scene.path}; add it as a [[cube]] or [[region]]")
+                raise InputError(f"{name!r} is a location in the problem but not in this scene",
+                                 Span(self.scene.path, 1, 1),
+                                 "add it as a [[cube]] or a [[region]]")
 
     def type_of(self, wanted: str) -> str:
         return wanted if wanted in self.task.domain.type_parents else "object"
