@@ -170,16 +170,3 @@ def test_cubes_too_wide_for_the_fingers_are_refused_at_cube_size(tmp_path: Path)
     assert caught.value.span is not None
     assert "cube_size" in text.split("\n")[caught.value.span.line - 1]
 
-
-def test_a_problem_location_missing_from_the_scene_names_the_scene_file(tmp_path: Path
-                                                                         ) -> None:
-    pytest.importorskip("pybullet")
-    from sim_scenes import youbot_task
-
-    from btplan.worlds.pybullet import open_world
-
-    scene = write_scene(tmp_path, OPEN_ROOM.replace('name = "yellow"', 'name = "purple"'))
-    with pytest.raises(InputError) as caught:
-        open_world(youbot_task(), scene=scene)
-    assert "'yellow' is a location in the problem but not in this scene" in str(caught.value)
-    assert caught.value.span is not None and caught.value.span.path == scene

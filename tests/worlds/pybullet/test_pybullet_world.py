@@ -269,12 +269,15 @@ def test_record_refuses_formats_it_cannot_write(tmp_path: Path) -> None:
 
 
 def test_a_scene_without_a_location_of_the_problem_is_refused(tmp_path: Path) -> None:
-    from btplan.errors import WorldError
+    """Bad input located at the scene file, not a failure of the world."""
+    from btplan.errors import InputError
 
     text = write_scene(tmp_path)
     Path(text).write_text(Path(text).read_text().replace('name = "goal"', 'name = "target"'))
-    with pytest.raises(WorldError, match="'goal' is a location in the problem but not in the scene"):
+    with pytest.raises(InputError, match="'goal' is a location in the problem but not in this "
+                                         "scene") as caught:
         open_world(TASK, text)
+    assert caught.value.span is not None and caught.value.span.path == text
 
 
 def test_an_event_condition_must_be_a_predicate_of_the_domain(tmp_path: Path) -> None:
