@@ -112,3 +112,41 @@ def test_fewer_halts_and_ticks_on_packages_under_disturbance() -> None:
     finished_ticks, finished_halts = _packages(True, seed=2)
     assert finished_halts < halts
     assert finished_ticks < ticks
+
+
+TWIN = """
+domain twin {
+    types { door }
+    predicates { open(d: door) }
+    action Key(d: door) {
+        post: open(d)
+        duration: 2
+    }
+    action Button(d: door) {
+        post: open(d)
+        duration: 2
+    }
+}
+problem shut for twin {
+    objects { front : door }
+    init { }
+    goal { open(front) }
+}
+"""
+
+
+def test_an_action_whose_work_the_finished_one_did_is_not_started(tmp_path: Path) -> None:
+    """The key opens the door while the button waits: the button is not pressed then."""
+    path = tmp_path / "twin.bt"
+    path.write_text(TWIN)
+    task = load(str(path))
+    world = SymbolicWorld(task)
+    key, button = ("Key", ("front",)), ("Button", ("front",))
+    finishing = FinishFirst(world, {k: world.ground(k) for k in (key, button)})
+    assert finishing.start(key) is RUNNING
+    finishing.end_tick()
+    finishing.halt(key)  # the tree turns to the button: the key's turn is finished first
+    assert finishing.start(button) is RUNNING
+    finishing.end_tick()
+    assert [str(a) for a in world.executed] == ["Key(front)"]
+    assert [str(a) for a in world.started] == ["Key(front)"]  # the button was never pressed

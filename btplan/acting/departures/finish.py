@@ -90,10 +90,21 @@ class FinishFirst:
                     return RUNNING  # `key` waits for it
                 if other == self.carried:
                     self.carried = None
+                if status is SUCCESS and key not in self.running and self._done_by(key):
+                    return RUNNING  # what finished did `key`'s work: the next tick sees it
         if key in self._stepped:
             return RUNNING
         self._stepped.add(key)
         return self._note(key, begin(key) if key not in self.running else self.world.step(key))
+
+    def _done_by(self, key: LeafKey) -> bool:
+        """Whether `key`'s effects all hold now, so that starting it would do nothing."""
+        action = self.grounding.get(key)
+        if action is None or not action.add:
+            return False
+        state = self.facts()
+        return all(a in state for a in action.add) and not any(
+            a in state for a in action.delete if a not in action.add)
 
     def _other_running(self, key: LeafKey) -> LeafKey | None:
         if self.carried is not None and self.carried != key:
