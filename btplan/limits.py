@@ -86,6 +86,14 @@ def shorten(text: str, width: int = MAX_ECHO) -> str:
     return text if len(text) <= width else text[: max(width - 3, 1)] + "..."
 
 
+def printable(text: str) -> str:
+    """`text` with its control characters written as escapes (`\\x1b`, `\\n`): a name or
+    a path read from input must not drive the terminal, nor break a one-line message."""
+    if text.isprintable():
+        return text
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
+
+
 def abridge(text: str, width: int = MAX_MESSAGE) -> str:
     """`text` with its middle cut out when longer than `width`, so the end still reads."""
     if len(text) <= width:

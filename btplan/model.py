@@ -281,6 +281,11 @@ class GroundAction(Frozen):
     def applicable(self, state: frozenset[Atom] | set[Atom]) -> bool:
         return all(p.holds(state) for p in self.preconditions)
 
+    def achieved(self, state: frozenset[Atom] | set[Atom]) -> bool:
+        """Whether `state` already shows every effect (adds there, plain deletes gone)."""
+        return all(a in state for a in self.add) and not any(
+            a in state for a in self.delete if a not in self.add)
+
     def deletes(self, atom: Atom) -> bool:
         """True when applying this action makes `atom` false (unless it also adds it)."""
         if atom in self.add:

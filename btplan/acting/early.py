@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import time
 
-from btplan.acting.departures.ahead import attached, deeper_false, forced_out, later_false
+from btplan.acting.departures.ahead import deeper_false, forced_out, later_false
 from btplan.acting.departures.prepare import RelaxedPlans, on_the_way, relaxed_plans
 from btplan.acting.departures.watch import broken_ahead
 from btplan.acting.state import LoopState, TickReport
@@ -160,7 +160,3 @@ class EarlyExpansions:
         return (len(report.expansions) < options.expansions_per_tick
                 and len(self.loop.expansions) < options.max_expansions)
 
-
-def is_attached(node: Node, root: Node) -> bool:
-    """Whether `node` is still in the tree under `root` (re-exported for the loop)."""
-    return attached(node, root)

@@ -256,11 +256,7 @@ class Skills:
                 self._made_by_others.add(key)
 
     def _effects_hold(self, action: GroundAction) -> bool:
-        if not action.add and not action.delete:
-            return False
-        state = self.facts()
-        return all(a in state for a in action.add) and not any(
-            a in state for a in action.delete if a not in action.add)
+        return bool(action.add or action.delete) and action.achieved(self.facts())
 
     def _action(self, key: LeafKey) -> GroundAction:
         action = self.grounding.get(key)

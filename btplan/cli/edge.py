@@ -16,7 +16,7 @@ import sys
 
 from btplan.cli.console import LazyConsole, escape
 from btplan.errors import BtplanError, InputError, Interrupted, PlanningError
-from btplan.limits import abridge
+from btplan.limits import abridge, printable
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -85,7 +85,7 @@ def format_input_error(error: InputError) -> str:
     """
     where = f"{error.span}: " if error.span else ""
     hint = f" ({abridge(error.hint)})" if error.hint else ""
-    lines = [one_line(f"{where}{abridge(error.message)}{hint}")]
+    lines = [printable(f"{where}{abridge(error.message)}{hint}")]
     shown = error.excerpt()
     if shown is not None:
         lines.append(f"  {shown[0]}")
@@ -95,14 +95,6 @@ def format_input_error(error: InputError) -> str:
 
 _ENVIRONMENT = {errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EIO, errno.EFBIG}
 """Errors of the machine a command runs on, rather than of btplan."""
-
-
-def one_line(text: str) -> str:
-    """`text` with its control characters written as escapes (`\\n`): a path or a name
-    with a newline in it must not break the one line a script reads."""
-    if text.isprintable():
-        return text
-    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
 def debugging() -> bool:
@@ -138,13 +130,13 @@ def exit_code_for(error: BaseException) -> int:
         stderr.print(f"[bold red]error:[/] {escape(format_input_error(error))}")
         return EXIT_BAD_INPUT
     if isinstance(error, PlanningError):
-        stderr.print(f"[bold red]failed:[/] {escape(one_line(error.reason))}")
+        stderr.print(f"[bold red]failed:[/] {escape(printable(error.reason))}")
         return EXIT_FAILED
     if isinstance(error, Interrupted):
         stderr.print(f"[bold yellow]interrupted:[/] {escape(str(error))}")
         return EXIT_INTERRUPTED
     if isinstance(error, BtplanError):
-        stderr.print(f"[bold red]error:[/] {escape(one_line(str(error)))}")
+        stderr.print(f"[bold red]error:[/] {escape(printable(str(error)))}")
         return EXIT_BAD_INPUT
     if isinstance(error, KeyboardInterrupt):
         stderr.print("[bold yellow]interrupted[/]")
@@ -153,7 +145,7 @@ def exit_code_for(error: BaseException) -> int:
         # The user's environment (a full disk, a file system gone read-only), not a bug:
         # outputs are written whole or not at all, so the files it would replace are kept.
         where = f"{error.filename}: " if error.filename is not None else ""
-        stderr.print(f"[bold red]error:[/] {escape(one_line(where))}"
+        stderr.print(f"[bold red]error:[/] {escape(printable(where))}"
                      f"{escape(error.strerror or str(error))}; nothing was replaced")
         return EXIT_BAD_INPUT
     if isinstance(error, BrokenPipeError):

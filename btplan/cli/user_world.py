@@ -2,9 +2,9 @@
 
 The class (or any callable) is found in a Python file or an importable module and
 called with the task when it takes an argument, without one otherwise. What it returns
-must have the five calls of btplan.robot.World; a `btplan.robot.Robot` is also checked
-against the task (every action and every changing predicate bound). Every failure is
-bad input: exit 2, naming the flag and what is wrong.
+must have the five calls of btplan.robot.World (a `btplan.robot.Robot` is checked
+against the task when the run starts, as `btplan.run` checks every robot). Every
+failure is bad input: exit 2, naming the flag and what is wrong.
 """
 
 from __future__ import annotations
@@ -51,11 +51,6 @@ def open_user_world(spec: str, task: Task) -> Any:
         raise InputError(f"{spec} made a {type(world).__name__}, which lacks "
                          f"{', '.join(missing)} of the world contract", AT,
                          "see docs/robot.md")
-    bind = getattr(world, "bind", None)
-    from btplan.robot.api import Robot
-
-    if isinstance(world, Robot) and callable(bind):
-        world.bind(task)
     return world
 
 

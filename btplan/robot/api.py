@@ -38,7 +38,16 @@ from typing import Any, TypeVar
 from btplan.bt.status import FAILURE, RUNNING, Status
 from btplan.bt.world import LeafKey
 from btplan.errors import InputError, Span, WorldError
-from btplan.model import EQUALITY, WILDCARD, ActionTemplate, Atom, Literal, Parameter, Task
+from btplan.model import (
+    EQUALITY,
+    WILDCARD,
+    ActionTemplate,
+    Atom,
+    Literal,
+    Parameter,
+    Task,
+    matches,
+)
 from btplan.records import record
 from btplan.robot.contract import Capabilities
 from btplan.robot.refine import ConstraintRefiner
@@ -203,8 +212,8 @@ class Robot:
             if name == EQUALITY:  # as the symbolic world answers it
                 return len(args) == 2 and args[0] == args[1]
             if WILDCARD in args:
-                return any(a.predicate == name and len(a.args) == len(args) and all(
-                    x in (WILDCARD, y) for x, y in zip(args, a.args)) for a in self._static)
+                pattern = Atom(name, tuple(args))
+                return any(matches(pattern, a) for a in self._static)
             return Atom(name, tuple(args)) in self._static
         if WILDCARD in args:
             return any(_truth(function(*g), name) for g in self._groundings.get(name, ())

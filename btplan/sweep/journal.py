@@ -51,9 +51,7 @@ class RowJournal:
         flags = os.O_WRONLY | os.O_CREAT | (os.O_APPEND if keep else os.O_TRUNC)
         self._fd = os.open(self.path, flags, 0o666)
         if keep:  # cut a torn last line, so the next row starts on a line of its own
-            size = sum(len(json.dumps(r, separators=(",", ":")).encode()) + 1
-                       for r in self.read())
-            os.ftruncate(self._fd, size)
+            os.ftruncate(self._fd, Path(self.path).read_bytes().rfind(b"\n") + 1)
 
     def add(self, row: Row) -> None:
         assert self._fd is not None

@@ -100,11 +100,7 @@ class FinishFirst:
     def _done_by(self, key: LeafKey) -> bool:
         """Whether `key`'s effects all hold now, so that starting it would do nothing."""
         action = self.grounding.get(key)
-        if action is None or not action.add:
-            return False
-        state = self.facts()
-        return all(a in state for a in action.add) and not any(
-            a in state for a in action.delete if a not in action.add)
+        return action is not None and bool(action.add) and action.achieved(self.facts())
 
     def _other_running(self, key: LeafKey) -> LeafKey | None:
         if self.carried is not None and self.carried != key:

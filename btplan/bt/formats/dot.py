@@ -17,6 +17,7 @@ from btplan.bt.node import Node
 from btplan.bt.parallel import Parallel
 from btplan.bt.status import FAILURE, RUNNING, SUCCESS, Status
 from btplan.bt.tree import BehaviorTree
+from btplan.limits import printable
 
 COLOURS: Mapping[Status, str] = {SUCCESS: "#9be09b", FAILURE: "#f4a3a3", RUNNING: "#f7dc6f"}
 """Fill colour per status: green, red, yellow; the status is also in the tooltip."""
@@ -25,14 +26,6 @@ COLOURS: Mapping[Status, str] = {SUCCESS: "#9be09b", FAILURE: "#f4a3a3", RUNNING
 def _quote(text: str) -> str:
     text = printable(text)
     return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
-
-
-def printable(text: str) -> str:
-    """`text` with control characters written as escapes (`\\x1b`, `\\n`): a name read from
-    a file must not drive the terminal (or a picture) it is shown in."""
-    if text.isprintable():
-        return text
-    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
 def node_label(node: Node) -> str:

@@ -11,11 +11,12 @@ import io
 from collections.abc import Collection, Mapping
 from typing import TYPE_CHECKING
 
-from btplan.bt.formats.dot import node_label, printable
+from btplan.bt.formats.dot import node_label
 from btplan.bt.leaves import Action, Leaf
 from btplan.bt.node import Node
 from btplan.bt.status import FAILURE, RUNNING, SUCCESS, Status
 from btplan.bt.tree import BehaviorTree
+from btplan.limits import printable
 
 if TYPE_CHECKING:
     from rich.tree import Tree
