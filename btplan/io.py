@@ -46,7 +46,12 @@ def write_stream(fd: int, text: str) -> None:
         stream.write(text)
         stream.flush()
         return
-    view = memoryview(text.encode("utf-8"))
+    write_all(fd, text.encode("utf-8"))
+
+
+def write_all(fd: int, data: bytes) -> None:
+    """Every byte of `data` to the file descriptor `fd` (os.write may take fewer)."""
+    view = memoryview(data)
     while view:
         view = view[os.write(fd, view):]
 

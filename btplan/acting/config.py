@@ -128,9 +128,12 @@ class ActingConfig:
             raise ValueError(f"no acting preset named {name!r} "
                              f"(presets: {', '.join(sorted(PRESETS))})") from None
 
-    def stall_limit(self, max_ticks: int) -> int:
-        """Failing ticks in a row, with nothing to expand, after which the run ends."""
-        return max_ticks if self.retry_failed_actions else self.planner.stall_limit
+    def stall_limit(self, max_ticks: int | None) -> int:
+        """Failing ticks in a row, with nothing to expand, after which the run ends
+        (`max_ticks` None: a run without a tick limit)."""
+        if not self.retry_failed_actions:
+            return self.planner.stall_limit
+        return max_ticks if max_ticks is not None else 2**62
 
     @property
     def loop_planner(self) -> PlannerOptions:

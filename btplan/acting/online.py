@@ -151,8 +151,7 @@ def run_task(
     if world is None:
         world = SymbolicWorld(task, seed=seed)
     config = config or default_config(world)
-    limit = max_ticks if max_ticks is not None else 0
-    options = replace(config.loop_planner, stall_limit=config.stall_limit(limit or 2**62))
+    options = replace(config.loop_planner, stall_limit=config.stall_limit(max_ticks))
     loop = BlendedLoop(task, world, options, like=models, config=config)
     pacer = Pacer(rate, clock, stop)
     recorder = Recorder(loop, world, agents, view, deque(maxlen=RECENT_TICKS))
@@ -179,9 +178,7 @@ def run_task(
                 halted, unstopped = _halt_everything(loop, config, clock)
     finally:
         recorder.detach()
-    recorder.summary.unstopped.extend(unstopped)
-    recorder.summary.overruns, recorder.summary.worst_lateness = (pacer.overruns,
-                                                                   pacer.worst_lateness)
+    recorder.summary.end(unstopped, pacer.overruns, pacer.worst_lateness)
     if raised is not None:
         if isinstance(raised, Terminated):
             raise SystemExit(143) from None

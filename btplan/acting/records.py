@@ -139,6 +139,11 @@ class RunSummary:
     def conflicts_resolved(self) -> int:
         return sum(e.conflicts_resolved for _, e in self.expansions)
 
+    def end(self, unstopped: list[str], overruns: int, worst_lateness: float) -> None:
+        """How the run ended: the skills that did not stop, and how its pacing went."""
+        self.unstopped.extend(unstopped)
+        self.overruns, self.worst_lateness = overruns, worst_lateness
+
     def count(self, name: str) -> int:
         """How many there were in all (`started`, `finished`, ...), listed or not."""
         return self.counts.get(name, 0)

@@ -24,7 +24,7 @@ from pathlib import Path
 from types import TracebackType
 
 from btplan.errors import InputError, Interrupted
-from btplan.io import STDIO, stream_of, write_atomic, write_stream
+from btplan.io import STDIO, stream_of, write_all, write_atomic, write_stream
 from btplan.records import record
 
 TYPE_CHECKING = False
@@ -223,14 +223,12 @@ class LineStream:
         if self._fd is None:
             write_stream(self._stream if self._stream is not None else 1, data)
             return
-        view = memoryview(data.encode("utf-8"))
         try:
             start: int | None = os.lseek(self._fd, 0, os.SEEK_CUR)
         except OSError:  # a pipe: nothing to cut back
             start = None
         try:
-            while view:
-                view = view[os.write(self._fd, view):]
+            write_all(self._fd, data.encode("utf-8"))
         except OSError:
             if start is not None:  # keep the file at a line boundary: cut the torn line
                 try:

@@ -183,8 +183,7 @@ def run(
         try:
             # The run stops itself at the tick after the budget; the timer is for a tick
             # that does not end (a long expansion): skills are halted on the way out.
-            with files, HardDeadline(timeout, started, grace=TICK_GRACE) as limit:
-                limit.phase = "a tick"
+            with files, HardDeadline(timeout, started, grace=TICK_GRACE):
                 result = _act(task, world, specs, scene_agents, settings, files.add, stop)
         except TimeLimitReached:
             stderr.print(f"[bold red]failed:[/] the time budget ({timeout:g} s) ran out in "

@@ -13,6 +13,7 @@ import json
 import os
 from pathlib import Path
 
+from btplan.io import write_all
 from btplan.sweep.runs import Row
 
 SUFFIX = ".rows.jsonl"
@@ -55,10 +56,7 @@ class RowJournal:
 
     def add(self, row: Row) -> None:
         assert self._fd is not None
-        data = (json.dumps(row, separators=(",", ":")) + "\n").encode("utf-8")
-        view = memoryview(data)
-        while view:
-            view = view[os.write(self._fd, view):]
+        write_all(self._fd, (json.dumps(row, separators=(",", ":")) + "\n").encode("utf-8"))
 
     def close(self) -> None:
         if self._fd is not None:
