@@ -7,8 +7,9 @@
 - `config`: `ActingConfig` and its presets (`paper`, `algorithm1`, `default`, `simulator`);
 - `online`: a run (agents, a fixed rate on a `clock`, `keep`, every way out halted),
   recorded tick by tick by `recorder` into `records`, drawn by `live_view`;
-- `offline/`: planning a tree from the initial state (`plan`), and `offline_fallback`,
-  which plans offline from the state of now when the loop is stuck.
+- `offline/`: planning a tree from the initial state (`plan`), and `offline_turns`,
+  which plans offline from the state of now before the first action and when the loop
+  is stuck.
 The benchmark's baselines live apart, in btplan.baselines. The names below are imported on first use (PEP 562): planning needs neither the
 online loop nor its agents.
 """

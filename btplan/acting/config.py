@@ -9,7 +9,9 @@ what users ask for:
   breadth-first choice of the condition to expand, first-match achievers, no departure.
   The paper's walk-throughs in the docs hold under it (`--paper`).
 - `ActingConfig.default()`: what `btplan run` does, measured in docs/reactivity.md. It
-  grows the tree within the tick until it runs (a sequential planner also plans before
+  first plans offline as `btplan plan` does and acts on that tree, so an undisturbed run
+  executes that plan (bench/acting_halts.py); then it grows the tree within the tick
+  until it runs (a sequential planner also plans before
   it acts), so an undisturbed run starts no action it will cancel; it retries a
   failing skill instead of giving up after a few ticks; and it adds the departures
   below, each an object of btplan.acting behind a hook of the loop.
@@ -72,7 +74,11 @@ class ActingConfig:
       `planner.stall_limit` such ticks in a row.
     - `plan_offline_when_stuck`: when the loop cannot grow the tree any further, plan
       the task offline from the facts of now, once, and act on that tree
-      (btplan.acting.offline_fallback); not in worlds that refine values as they run.
+      (btplan.acting.offline_turns); not in worlds that refine values as they run.
+    - `plan_before_acting`: before the first action, plan the task offline as `btplan
+      plan` does (its shorter plan first) and act on that tree, growing it online where
+      the world departs from it: an undisturbed run executes that plan and no more
+      (btplan.acting.offline_turns); not in worlds that refine values as they run.
     - `stop_on_skill_error`: an exception inside a skill ends the run (SkillError)
       instead of counting as that action's FAILURE.
     - `halt_wait`: seconds to wait, on every way out of a run, for halted skills that
@@ -89,6 +95,7 @@ class ActingConfig:
     finish_halted_action: bool = True
     retry_failed_actions: bool = True
     plan_offline_when_stuck: bool = True
+    plan_before_acting: bool = True
     stop_on_skill_error: bool = False
     halt_wait: float = 2.0
 
@@ -99,7 +106,8 @@ class ActingConfig:
                            expansions_per_tick=1, expand_later_preconditions=False,
                            expand_when_forced=False, skip_moved_while_held=False,
                            credit_other_goals=False, finish_halted_action=False,
-                           retry_failed_actions=False, plan_offline_when_stuck=False),
+                           retry_failed_actions=False, plan_offline_when_stuck=False,
+                           plan_before_acting=False),
                        **changes)
 
     @classmethod

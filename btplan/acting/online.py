@@ -21,7 +21,7 @@ from typing import Any
 from btplan.acting.clock import Clock
 from btplan.acting.config import ACTING_PLANNER, ActingConfig
 from btplan.acting.loop import BlendedLoop
-from btplan.acting.offline_fallback import OfflineFallback
+from btplan.acting.offline_turns import OfflineTurns
 from btplan.acting.pacing import Pacer, Stop
 from btplan.acting.recorder import Recorder, TickView
 from btplan.acting.records import RunSummary, TickRecord
@@ -155,13 +155,12 @@ def run_task(
     loop = BlendedLoop(task, world, options, like=models, config=config)
     pacer = Pacer(rate, clock, stop)
     recorder = Recorder(loop, world, agents, view, deque(maxlen=RECENT_TICKS))
-    fallback = (OfflineFallback(task, stop) if config.plan_offline_when_stuck
-                and not capabilities_of(world).continuous else None)
+    offline = OfflineTurns(task, config, world, stop)
     reached, reason, interrupted, raised = False, "", False, None
     try:
         with _terminate_cleanly():
             try:
-                reached, reason = _drive(loop, pacer, recorder, max_ticks, keep, fallback)
+                reached, reason = _drive(loop, pacer, recorder, max_ticks, keep, offline)
             except Stop:
                 reason, interrupted = "interrupted", True
                 if keep and recorder.goal_held:  # a kept run stopped with the goal holding
@@ -190,7 +189,7 @@ def run_task(
 
 
 def _drive(loop: BlendedLoop, pacer: Pacer, recorder: Recorder, max_ticks: int | None,
-           keep: bool, fallback: OfflineFallback | None = None) -> tuple[bool, str]:
+           keep: bool, offline: OfflineTurns) -> tuple[bool, str]:
     """Tick until the goal is reached (with `keep`, on until the limit), or the limit.
 
     The goal is checked in the world after the tick: when actions finish within the
@@ -202,10 +201,13 @@ def _drive(loop: BlendedLoop, pacer: Pacer, recorder: Recorder, max_ticks: int |
     while max_ticks is None or ticks < max_ticks:
         pacer.wait()
         recorder.before(loop.ticks + 1)
+        ahead = offline.ahead(loop) if ticks == 0 else None
         try:
             report = loop.tick()
+            if ahead is not None:
+                report.follows(ahead)
         except PlanningError:
-            taken = fallback.take_over(loop) if fallback is not None else None
+            taken = offline.take_over(loop)
             if taken is None:
                 raise
             report = taken  # the loop acts on the tree planned offline from the next tick

@@ -55,6 +55,12 @@ class TickReport:
     def add_planning(self, seconds: float) -> None:
         self.planning_seconds += seconds
 
+    def follows(self, earlier: TickReport) -> None:
+        """The expansions and planning time of `earlier` (planning before the tick) come
+        first in this tick's report."""
+        self.expansions[:0] = earlier.expansions
+        self.planning_seconds += earlier.planning_seconds
+
     def looked_ahead(self, checks: int) -> None:
         """Conditions looked at ahead of the running actions in this tick."""
         self.checks_ahead = checks

@@ -48,7 +48,7 @@ from btplan.model import (
     Task,
     matches,
 )
-from btplan.records import record
+from btplan.records import record, replace
 from btplan.robot.contract import Capabilities
 from btplan.robot.refine import ConstraintRefiner
 from btplan.robot.skills import Running, Threads, as_status
@@ -149,6 +149,7 @@ class Robot:
         elif kind == "refiner":
             action_name, _, parameter = name.partition(".")
             self._refiners[(action_name, parameter)] = function
+            self.capabilities = replace(self.capabilities, own_values=True)
         else:
             self._actions[name] = (function, kind == "threaded")
 

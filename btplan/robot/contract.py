@@ -86,6 +86,9 @@ class Capabilities:
     except `refine`, which a method of that name declares by itself.
 
     - `refines`: `refine(template, binding, parameter) -> list[str]` (`Refining`).
+    - `own_values`: `refine` gives values of the world's own (a trajectory, a grasp
+      pose) that the domain's `where` constraints do not; planning in the model before
+      acting cannot know them, so the run leaves that to the loop.
     - `continuous`: facts change while an action runs (a base driving past a cube), so
       a state seen twice within one action is not a loop.
     - `outside_changes`: an `outside_changes` int property counting changes others made
@@ -100,6 +103,7 @@ class Capabilities:
     """
 
     refines: bool = False
+    own_values: bool = False
     continuous: bool = False
     outside_changes: bool = False
     lessons: bool = False

@@ -138,8 +138,9 @@ def test_a_long_run_keeps_counts_not_lists() -> None:
 
 
 def test_a_kept_run_stopped_with_the_goal_holding_counts_as_reached() -> None:
-    asked = iter([False] * 12 + [True])
-    outcome = btplan.run(TASK, keep=True, max_ticks=None, stop=lambda: next(asked))
+    ticks: list[int] = []
+    outcome = btplan.run(TASK, keep=True, max_ticks=None, stop=lambda: len(ticks) == 12,
+                         view=lambda root, statuses, record: ticks.append(record.tick))
     assert outcome.interrupted and outcome.reached and outcome.ticks == 12
 
 
@@ -204,11 +205,13 @@ def test_a_loop_stuck_online_acts_on_a_tree_planned_offline_from_the_state_of_no
     planning, from the facts the world reports then, finds the tree the loop goes on with."""
     from btplan.acting.config import ActingConfig
     from btplan.lang import load
+    from btplan.records import replace
 
     task = load([str(ROOT / "domains" / "blocksworld.bt")], problem="sussman")
-    alone = btplan.run(task, config=ActingConfig.default(plan_offline_when_stuck=False))
+    online = ActingConfig.default(plan_before_acting=False)
+    alone = btplan.run(task, config=replace(online, plan_offline_when_stuck=False))
     assert not alone.reached and "conflict-free" in alone.reason
-    outcome = btplan.run(task)
+    outcome = btplan.run(task, config=online)
     assert outcome.reached
     fell_back = [r for r in outcome.records if r.status == "FAILURE" and r.expansions]
     assert len(fell_back) == 1  # the offline plan's expansions, on the tick it was made

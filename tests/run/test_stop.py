@@ -15,13 +15,9 @@ PICK = str(Path(__file__).resolve().parents[2] / "domains" / "pick_place.bt")
 
 def test_a_stopped_run_keeps_its_records_and_halts_the_running_action() -> None:
     task = btplan.load(PICK)
-    asked: list[int] = []
-
-    def stop() -> bool:
-        asked.append(1)
-        return len(asked) > 5  # asked once before every tick: stop before tick 6
-
-    result = btplan.run(task, stop=stop)
+    ticks: list[int] = []
+    result = btplan.run(task, stop=lambda: len(ticks) == 5,  # stop before tick 6
+                        view=lambda root, statuses, record: ticks.append(record.tick))
     assert result.interrupted and not result.reached and result.reason == "interrupted"
     assert [r.tick for r in result.records] == [1, 2, 3, 4, 5]
     running = [n.name for n in result.records[-1].nodes

@@ -108,7 +108,8 @@ class PyBulletWorld(SkillWorld[SceneState, Conditions]):
             "arm_ompl_followed": self.timings.ompl_followed,
         }
 
-    capabilities = Capabilities(refines=True, continuous=True, outside_changes=True,
+    capabilities = Capabilities(refines=True, own_values=True, continuous=True,
+                                outside_changes=True,
                                 lessons=True, dead_ends=True, closes=True)
     """Facts change while an action runs; agents push cubes while the robot acts; a
     failed grasp teaches a side not to try again; `dead_ends` and `close` are offered."""
