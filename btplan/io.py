@@ -9,6 +9,7 @@ from __future__ import annotations
 import os
 import stat
 import sys
+from collections.abc import Iterable
 from pathlib import Path
 
 from btplan.errors import InputError, Span
@@ -107,7 +108,12 @@ def write_atomic(path: str, text: str) -> None:
 
 
 def write_bytes_atomic(path: str, data: bytes) -> None:
-    """Write `data` to a temporary file beside `path`, then rename it over `path`.
+    """Write `data` to `path` all at once or not at all (`write_chunks_atomic`)."""
+    write_chunks_atomic(path, (data,))
+
+
+def write_chunks_atomic(path: str, chunks: Iterable[bytes]) -> None:
+    """Write `chunks` to a temporary file beside `path`, then rename it over `path`.
 
     The temporary file is private (mkstemp), so it gets the mode a plain `open` would
     have given: the existing file's mode, or 0666 less the user's umask. Otherwise every
@@ -123,7 +129,8 @@ def write_bytes_atomic(path: str, data: bytes) -> None:
         info = None
     if info is not None and not stat.S_ISREG(info.st_mode):
         with open(target, "wb") as stream:
-            stream.write(data)
+            for chunk in chunks:
+                stream.write(chunk)
         return
     folder = target.parent
     if not folder.is_dir():
@@ -132,7 +139,8 @@ def write_bytes_atomic(path: str, data: bytes) -> None:
     fd, tmp = _temporary(folder, target.name)
     try:
         with os.fdopen(fd, "wb") as handle:
-            handle.write(data)
+            for chunk in chunks:
+                handle.write(chunk)
             os.fchmod(handle.fileno(), mode)
         os.replace(tmp, target)
     except BaseException:

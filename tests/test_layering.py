@@ -36,7 +36,10 @@ FORBIDDEN: dict[str, tuple[str, ...]] = {
     "btplan.acting.departures": ("btplan.acting.loop", "btplan.acting.online",
                                  "btplan.acting.offline", "btplan.cli", "btplan.worlds"),
     "btplan.acting.hooks": ("btplan.acting.loop", "btplan.acting.departures"),
-    "btplan.acting": ("btplan.cli", "btplan.sweep", "btplan.baselines"),
+    "btplan.acting": ("btplan.cli", "btplan.sweep", "btplan.baselines", "btplan.monitor"),
+    # Monitors watch what a run reports (its records, its tree); they never act.
+    "btplan.monitor": ("btplan.cli", "btplan.sweep", "btplan.lang", "btplan.planner",
+                       "btplan.worlds", "btplan.acting.loop", "btplan.acting.online"),
     "btplan.baselines": ("btplan.cli", "btplan.sweep", "btplan.acting.loop",
                          "btplan.acting.offline", "btplan.acting.online"),
     "btplan.sweep": ("btplan.cli",),

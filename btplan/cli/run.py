@@ -15,6 +15,7 @@ import typer
 
 from btplan.cli.console import escape
 from btplan.cli.interrupts import HardDeadline, Interrupts, TimeLimitReached
+from btplan.cli.monitors import check_btlog, check_port, closing_monitors, open_monitors
 from btplan.cli.outputs import LineStream, Output, check_outputs, write_atomic
 from btplan.cli.typer_app import EXIT_FAILED, app, guarded, stderr
 from btplan.errors import InputError, Interrupted, Span, WorldError
@@ -45,6 +46,8 @@ EXAMPLES = """Examples:
   btplan run domains/pick_place.bt --keep --disturb 'undo:Place@p=0.05' --max-ticks 500
   btplan run domains/youbot.bt --sim pybullet -q --trace run.jsonl --plan-out p.plan
   btplan run domains/pick_place.bt --plan-out - | wc -l
+  btplan run domains/pick_place_obstacle.bt --scenario examples/example2.dist --groot --hz 2
+  btplan run domains/pick_place_obstacle.bt --scenario examples/example2.dist --btlog run.btlog
 """
 
 
@@ -118,6 +121,16 @@ def run(
     record: Annotated[str | None, typer.Option(
         "--record", metavar="FILE.gif", help="Record the PyBullet run to a GIF (--sim pybullet).")
     ] = None,
+    groot: Annotated[int | None, typer.Option(
+        "--groot", metavar="[PORT]",
+        help="Serve the growing tree to Groot2 (BehaviorTree.CPP's monitor protocol) on "
+             "127.0.0.1:PORT and PORT+1; PORT defaults to 1667. Connect Groot2's monitor "
+             "to this machine and port (docs/monitor.md).", show_default=False)] = None,
+    btlog: Annotated[str | None, typer.Option(
+        "--btlog", metavar="FILE.btlog",
+        help="Write the run as a Groot2 replay file (BehaviorTree.CPP's FileLogger2 "
+             "format), put together when the run ends, however it ends.",
+        show_default=False)] = None,
 ) -> None:
     """Run Algorithm 1 online: tick the tree, expand it when it fails, let agents disturb it.
 
@@ -145,8 +158,10 @@ def run(
     if preset is not None and preset not in PRESETS:
         raise InputError(f"no preset named {preset!r}", Span("--preset", 1, 1),
                          f"presets: {', '.join(PRESETS)}")
+    check_port("--groot", groot)
+    check_btlog(btlog)
     check_outputs(Output("--trace", trace), Output("--plan-out", plan_out),
-                  Output("--record", record),
+                  Output("--record", record), Output("--btlog", btlog),
                   inputs=[domain, *(p for p in (problem, scenario) if p),
                           *([world_spec.rpartition(":")[0]] if world_spec else [])])
     task = acting.load(resolve(domain), *([problem] if problem is not None else []))
@@ -181,10 +196,13 @@ def run(
                           preset="paper" if paper else preset, quiet=quiet,
                           world_name=WORLD_NAMES[sim] if world_spec is None else world_spec)
         try:
+            watch = open_monitors(groot, btlog, world, "MainTree")
             # The run stops itself at the tick after the budget; the timer is for a tick
             # that does not end (a long expansion): skills are halted on the way out.
-            with files, HardDeadline(timeout, started, grace=TICK_GRACE):
-                result = _act(task, world, specs, scene_agents, settings, files.add, stop)
+            with files, closing_monitors(watch), HardDeadline(timeout, started,
+                                                               grace=TICK_GRACE):
+                result = _act(task, world, specs, scene_agents, settings, files.add, stop,
+                              watch)
         except TimeLimitReached:
             stderr.print(f"[bold red]failed:[/] the time budget ({timeout:g} s) ran out in "
                          "the middle of a tick; the running skills were halted")
@@ -287,7 +305,8 @@ class Acting:
 
 
 def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Agent],
-         settings: Acting, keep: Callable[[TickRecord], None], stop: Callable[[], bool]
+         settings: Acting, keep: Callable[[TickRecord], None], stop: Callable[[], bool],
+         watch: Callable[[Node, Mapping[int, Status], TickRecord], None] | None = None
          ) -> acting.RunOutcome:
     """Act, with the live view on a terminal, progress lines in a pipe, or nothing (-q)."""
     from btplan import acting
@@ -300,6 +319,8 @@ def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Ag
                  ) -> acting.RunOutcome:
         def each(root: Node, reached: Mapping[int, Status], record: TickRecord) -> None:
             keep(record)
+            if watch is not None:
+                watch(root, reached, record)
             if view is not None:
                 view(root, reached, record)
 

@@ -12,7 +12,7 @@ TICK_MS milliseconds both ways.
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from collections.abc import Sequence as Seq
 from xml.sax.saxutils import quoteattr
 
@@ -74,27 +74,32 @@ def _check_leaf(leaf: Leaf, models: dict[str, tuple[str, tuple[str, ...]]]) -> N
 
 
 def _write(node: Node, depth: int, out: list[str],
-           models: dict[str, tuple[str, tuple[str, ...]]]) -> None:
+           models: dict[str, tuple[str, tuple[str, ...]]],
+           uid: Callable[[Node], int] | None = None) -> None:
+    """One node and its subtree; with `uid`, as BT.CPP writes a tree it runs: every
+    node named (its ID when it has no name of its own) and numbered by `_uid`."""
     pad = "  " * depth
     attrs: list[tuple[str, str]] = []
     if isinstance(node, Leaf):
         _check_leaf(node, models)
         tag = node.ident
-        if node.name != leaf_label(node.ident, node.args):
+        if uid is not None or node.name != leaf_label(node.ident, node.args):
             attrs.append(("name", node.name))
-        attrs.extend(zip(node.ports, node.args, strict=True))
+        params = list(zip(node.ports, node.args, strict=True))
     else:
         tag, params = _control(node)
-        if node.name:
-            attrs.append(("name", node.name))
-        attrs.extend(params)
+        if node.name or uid is not None:
+            attrs.append(("name", node.name or tag))
+    if uid is not None:
+        attrs.append(("_uid", str(uid(node))))
+    attrs.extend(params)
     text = "".join(f" {k}={quoteattr(v)}" for k, v in attrs)
     if not node.children:
         out.append(f"{pad}<{tag}{text}/>")
         return
     out.append(f"{pad}<{tag}{text}>")
     for child in node.children:
-        _write(child, depth + 1, out, models)
+        _write(child, depth + 1, out, models, uid)
     out.append(f"{pad}</{tag}>")
 
 
@@ -125,6 +130,34 @@ def dump_xml(tree: BehaviorTree) -> str:
         out.append(f"    </{kind}>")
     out += ["  </TreeNodesModel>", "</root>"]
     return "\n".join(out) + "\n"
+
+
+def dump_running_xml(tree: BehaviorTree, uid: Callable[[Node], int]) -> str:
+    """The tree as BT.CPP describes a tree it runs (its WriteTreeToXML with metadata and
+    built-in models, what Groot2 and FileLogger2 read): every node with `name` and
+    `_uid`, the tree's `_fullpath`, and a TreeNodesModel with the built-in nodes and
+    every leaf ID, in ID order."""
+    models: dict[str, tuple[str, tuple[str, ...]]] = {}
+    body: list[str] = []
+    _write(tree.root, 2, body, models, uid)
+    entries = {ident: (spec.kind, tuple((p.direction, p.name, p.type) for p in spec.ports))
+               for ident, spec in BUILTINS.items()}
+    entries.update({ident: (kind, tuple(("input", p, "std::string") for p in ports))
+                    for ident, (kind, ports) in models.items()})
+    out = ['<root BTCPP_format="4">',
+           f'  <BehaviorTree ID={quoteattr(tree.name or "MainTree")} _fullpath="">', *body,
+           "  </BehaviorTree>", "  <TreeNodesModel>"]
+    for ident in sorted(entries):
+        kind, ports = entries[ident]
+        if not ports:
+            out.append(f"    <{kind} ID={quoteattr(ident)}/>")
+            continue
+        out.append(f"    <{kind} ID={quoteattr(ident)}>")
+        out.extend(f"      <{d}_port name={quoteattr(n)} type={quoteattr(t)}/>"
+                   for d, n, t in ports)
+        out.append(f"    </{kind}>")
+    out += ["  </TreeNodesModel>", "</root>"]
+    return "\n".join(out)
 
 
 # --- imported documents -------------------------------------------------------------------

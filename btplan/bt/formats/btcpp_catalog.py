@@ -93,7 +93,7 @@ BUILTINS: dict[str, BuiltinSpec] = {
                            PortSpec("output_key", "inout", "AnyTypeAllowed")),
     "UnsetBlackboard": _leaf("Action", PortSpec("key")),
     "Sleep": _leaf("Action", PortSpec("msec", type="unsigned int")),
-    "WasEntryUpdated": _leaf("Condition", PortSpec("entry")),
+    "WasEntryUpdated": _leaf("Action", PortSpec("entry")),
     "SubTree": BuiltinSpec("SubTree", (PortSpec("_autoremap", type="bool", default="false"),)),
 }
 """Every ID BehaviorTree.CPP 4.8's factory registers by itself, and TryCatch (4.10)."""

@@ -1,0 +1,72 @@
+"""The monitors `btplan run` can open: Groot2's live protocol (`--groot [PORT]`) and
+a Groot2 replay file (`--btlog FILE.btlog`)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from typing import Any
+
+from btplan.errors import InputError, Span
+
+__all__ = ["OPTIONAL_PORTS", "closing_monitors", "open_monitors", "with_default_ports"]
+
+OPTIONAL_PORTS = {"--groot": "1667"}
+"""Options whose port may be left out, and the port they then take."""
+
+
+def with_default_ports(argv: Sequence[str]) -> list[str]:
+    """The command line with the default port put after a port option given without
+    one (`--groot` alone, or followed by another option or an argument that is no
+    port): typer has no option whose value may be left out."""
+    out: list[str] = []
+    for at, word in enumerate(argv):
+        out.append(word)
+        default = OPTIONAL_PORTS.get(word)
+        if default is not None:
+            following = argv[at + 1] if at + 1 < len(argv) else ""
+            if not following.isdigit():
+                out.append(default)
+    return out
+
+
+def check_port(flag: str, port: int | None) -> None:
+    if port is not None and not 1 <= port <= 65534:
+        raise InputError(f"{flag} {port}: a port is a number from 1 to 65534 (the next one "
+                         "is used too)", Span(flag, 1, 1))
+
+
+def check_btlog(path: str | None) -> None:
+    if path is not None and not path.endswith(".btlog"):
+        raise InputError(f"--btlog {path}: the file name must end in .btlog",
+                         Span("--btlog", 1, 1), "Groot2 opens replay files by that suffix")
+
+
+def open_monitors(groot: int | None, btlog: str | None, world: Any, name: str) -> Any:
+    """The run's monitor (a tick view), or None when none was asked for."""
+    if groot is None and btlog is None:
+        return None
+    from btplan.monitor.run_monitor import Monitor, RunMonitor
+
+    monitors: list[Monitor] = []
+    if groot is not None:  # first: the one that can fail (a port in use)
+        from btplan.monitor.groot2 import Groot2Server
+
+        monitors.append(Groot2Server(groot))
+    if btlog is not None:
+        from btplan.monitor.btlog import BtlogWriter
+
+        monitors.append(BtlogWriter(btlog))
+    facts = sorted(str(atom) for atom in world.facts())
+    return RunMonitor(monitors, name, facts)
+
+
+@contextmanager
+def closing_monitors(monitor: Any) -> Iterator[None]:
+    """Close the run's monitors when the run ends, however it ends: the replay file is
+    written then, and the Groot2 port is freed."""
+    try:
+        yield
+    finally:
+        if monitor is not None:
+            monitor.close()
