@@ -168,10 +168,11 @@ class Groot2Server:
         return [b"error", b"Request not recognized"]
 
     def _blackboard(self, names: str) -> bytes:
-        import msgpack
+        import msgpack  # type: ignore[import-untyped]
 
         wanted = {name: self._board for name in names.split(";") if name == self._name}
-        return msgpack.packb(wanted or None)
+        packed: bytes = msgpack.packb(wanted or None)
+        return packed
 
     def _recording(self, parts: list[bytes], header: bytes) -> list[bytes]:
         if len(parts) != 2:

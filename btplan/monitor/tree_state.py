@@ -56,6 +56,10 @@ class TreeState:
         self._order: list[Node] = []
         self._shape: list[int] = []
         self._controls: set[int] = set()
+        self._running: set[int] = set()
+        self._buffer = bytearray()
+        self._offsets: dict[int, int] = {}
+        """Where each uid's status code sits in the status buffer."""
         self._codes: dict[int, int] = {}
         self.dropped = 0
         """Nodes past MAX_UID, which no client sees."""
@@ -87,6 +91,13 @@ class TreeState:
         self._number(nodes)
         self._order = [n for n in nodes if id(n) in self._uids]
         self._controls = {self._uids[id(n)] for n in self._order if not isinstance(n, Leaf)}
+        self._buffer = bytearray()
+        self._offsets = {}
+        for node in self._order:
+            uid = self._uids[id(node)]
+            self._buffer += uid.to_bytes(2, "little")
+            self._offsets[uid] = len(self._buffer)
+            self._buffer.append(self._codes.get(uid, 0))
         self.xml = dump_running_xml(BehaviorTree(root, self.name), self.uid)
         self.uuid = uuid.uuid4().bytes
         self.versions += 1
@@ -107,30 +118,42 @@ class TreeState:
         a reached node goes to its status (unless it stays RUNNING), and every node
         that is not RUNNING at the end of the tick is reset to idle (its parent halts
         it, or the tree resets the root), which is a transition to 0 of its own. A
-        control node sets itself RUNNING as its tick starts, whatever it returns."""
+        control node sets itself RUNNING as its tick starts, whatever it returns.
+
+        Only the nodes the tick reached and those RUNNING before it can change, so
+        only they are looked at: the rest of a large tree costs nothing per tick."""
         transitions: list[tuple[int, int]] = []
-        codes, controls = self._codes, self._controls
+        codes, controls, uids = self._codes, self._controls, self._uids
         running = CODES[Status.RUNNING]
-        for node in self._order:
-            uid = self._uids[id(node)]
-            old = codes.get(uid, 0)
-            before = old if old < IDLE_FROM else 0
-            status = reached.get(id(node))
-            if status is not None:
-                code = CODES[status]
-                if before != running and uid in controls:  # set RUNNING as they start
-                    transitions.append((uid, running))
-                    before = running
-                if code != before:
-                    transitions.append((uid, code))
-                if code != running:
-                    transitions.append((uid, 0))
-                    code += IDLE_FROM
-                codes[uid] = code
-            elif before:
+        was_running, self._running = self._running, set()
+        for key, status in reached.items():
+            uid = uids.get(key)
+            if uid is None:
+                continue
+            before = running if uid in was_running else 0
+            code = CODES[status]
+            if before != running and uid in controls:  # set RUNNING as they start
+                transitions.append((uid, running))
+                before = running
+            if code != before:
+                transitions.append((uid, code))
+            if code == running:
+                self._running.add(uid)
+            else:
                 transitions.append((uid, 0))
-                codes[uid] = IDLE_FROM + before
+                code += IDLE_FROM
+            self._set(uid, code)
+        for uid in was_running - self._running:
+            if codes.get(uid) == running:  # halted without being reached
+                transitions.append((uid, 0))
+                self._set(uid, IDLE_FROM + running)
         return transitions
+
+    def _set(self, uid: int, code: int) -> None:
+        self._codes[uid] = code
+        at = self._offsets.get(uid)
+        if at is not None:
+            self._buffer[at] = code
 
     # --- what clients read -----------------------------------------------------------------
 
@@ -145,12 +168,7 @@ class TreeState:
     def status_buffer(self) -> bytes:
         """BT.CPP's status buffer: per node, depth first, its uid (2 bytes, little
         endian) and its status code (1 byte)."""
-        out = bytearray()
-        for node in self._order:
-            uid = self._uids[id(node)]
-            out += uid.to_bytes(2, "little")
-            out.append(self._codes.get(uid, 0))
-        return bytes(out)
+        return bytes(self._buffer)
 
     def code(self, uid: int) -> int:
         return self._codes.get(uid, 0)

@@ -75,7 +75,8 @@ def test_a_growing_tree_is_watched_live_by_a_groot2_client() -> None:
     assert len(uuids) >= 2 and sizes == sorted(sizes) and sizes[-1] > sizes[0]  # it grew
     assert running  # statuses were seen
     assert board is not None and "facts" in board["MainTree"]  # type: ignore[operator]
-    with socket.socket() as again:  # the port is free once the run has ended
+    with socket.socket() as again:  # the port is free once the run has ended (as a
+        again.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # server binds it)
         again.bind(("127.0.0.1", port))
 
 
