@@ -43,9 +43,8 @@ def check_btlog(path: str | None) -> None:
 
 
 def open_monitors(groot: int | None, btlog: str | None, world: Any, name: str) -> Any:
-    """The run's monitor (a tick view), or None when none was asked for."""
-    if groot is None and btlog is None:
-        return None
+    """The run's monitor (a tick view that also makes the trace's lines), with the
+    Groot2 server and the replay file when asked for."""
     from btplan.monitor.run_monitor import Monitor, RunMonitor
 
     monitors: list[Monitor] = []
@@ -68,5 +67,4 @@ def closing_monitors(monitor: Any) -> Iterator[None]:
     try:
         yield
     finally:
-        if monitor is not None:
-            monitor.close()
+        monitor.close()

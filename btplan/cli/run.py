@@ -29,6 +29,7 @@ if TYPE_CHECKING:
     from btplan.bt import Node, Status
     from btplan.model import Task
     from btplan.worlds.agents import Agent
+    from btplan.monitor.run_monitor import RunMonitor, TickUpdate
     from btplan.worlds.disturb import DisturbSpec
 
 
@@ -264,7 +265,7 @@ class RunFiles:
         if self.trace is not None:
             self.trace.__exit__(kind, error, tb)
 
-    def add(self, record: TickRecord) -> None:
+    def add(self, update: TickUpdate) -> None:
         """The plan first, then the trace: an action the trace shows finished is in the
         plan file, even when the run is killed between the two writes. An output that
         cannot be written any more is not written again (`failed`)."""
@@ -272,10 +273,10 @@ class RunFiles:
             return
         flag, path = "--plan-out", self.plan_out
         try:
-            self._write_plan(record.plan_lines)
+            self._write_plan(update.record.plan_lines)
             if self.trace is not None:
                 flag, path = "--trace", self.trace.path
-                self.trace.write_line(record.to_json())
+                self.trace.write_line(update.line)
         except OSError as error:
             self.failed = InputError(f"{flag} {path}: cannot write: "
                                      f"{error.strerror or error}; the run stopped there")
@@ -305,9 +306,8 @@ class Acting:
 
 
 def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Agent],
-         settings: Acting, keep: Callable[[TickRecord], None], stop: Callable[[], bool],
-         watch: Callable[[Node, Mapping[int, Status], TickRecord], None] | None = None
-         ) -> acting.RunOutcome:
+         settings: Acting, keep: Callable[[TickUpdate], None], stop: Callable[[], bool],
+         watch: RunMonitor) -> acting.RunOutcome:
     """Act, with the live view on a terminal, progress lines in a pipe, or nothing (-q)."""
     from btplan import acting
     from btplan.acting.config import ActingConfig
@@ -318,9 +318,7 @@ def _act(task: Task, world: Any, specs: list[DisturbSpec], scene_agents: list[Ag
     def run_with(view: Callable[[Node, Mapping[int, Status], TickRecord], None] | None
                  ) -> acting.RunOutcome:
         def each(root: Node, reached: Mapping[int, Status], record: TickRecord) -> None:
-            keep(record)
-            if watch is not None:
-                watch(root, reached, record)
+            keep(watch.update(root, reached, record))
             if view is not None:
                 view(root, reached, record)
 

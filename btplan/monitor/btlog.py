@@ -24,6 +24,10 @@ from collections.abc import Iterator
 from btplan.io import write_chunks_atomic
 from btplan.monitor.tree_state import TreeState
 
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from btplan.monitor.run_monitor import TickUpdate
+
 __all__ = ["MAGIC", "BtlogWriter", "read_btlog"]
 
 MAGIC = b"BTCPP4-FileLogger2"
@@ -39,12 +43,13 @@ class BtlogWriter:
         self.path = path
         self.started = time.time()
         self._spool = tempfile.TemporaryFile()
-        self._xml = ""
+        self._state: TreeState | None = None
         self.transitions = 0
 
-    def publish(self, state: TreeState, transitions: list[tuple[int, int]]) -> None:
+    def publish(self, state: TreeState, update: TickUpdate) -> None:
         """One tick's transitions, stamped with the time they are taken in."""
-        self._xml = state.xml
+        self._state = state
+        transitions = update.transitions
         if not transitions:
             return
         stamp = int((time.time() - self.started) * 1e6).to_bytes(8, "little")[:6]
@@ -55,7 +60,7 @@ class BtlogWriter:
     def close(self) -> None:
         """Write the log (the final tree, then every transition) and drop the spool."""
         try:
-            xml = self._xml.encode()
+            xml = (self._state.xml if self._state is not None else "").encode()
             head = (MAGIC + bytes([PROTOCOL]) + struct.pack("<i", len(xml)) + xml
                     + struct.pack("<q", int(self.started * 1e6)))
             write_chunks_atomic(self.path, self._chunks(head))

@@ -30,10 +30,13 @@ import struct
 import threading
 import time
 from collections import deque
-from collections.abc import Iterable
 
 from btplan.errors import InputError
 from btplan.monitor.tree_state import TreeState
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from btplan.monitor.run_monitor import TickUpdate
 
 __all__ = ["DEFAULT_PORT", "HEARTBEAT", "Groot2Server"]
 
@@ -86,7 +89,7 @@ class Groot2Server:
 
     # --- the run's side --------------------------------------------------------------------
 
-    def publish(self, state: TreeState, changed: Iterable[tuple[int, int]]) -> None:
+    def publish(self, state: TreeState, update: TickUpdate) -> None:
         """The tree after a tick: its XML (when it changed), statuses and blackboard."""
         board = {"facts": sorted(state.facts), "tick": state.tick}
         status = state.status_buffer()
@@ -98,7 +101,7 @@ class Groot2Server:
                 at = int((time.time() - self._recording_since) * 1e6)
                 stamp = at.to_bytes(8, "little")[:6]
                 self._transitions.extend(stamp + uid.to_bytes(2, "little") + bytes([code])
-                                         for uid, code in changed)
+                                         for uid, code in update.transitions)
 
     @property
     def connected(self) -> bool:

@@ -46,9 +46,12 @@ class TreeState:
     def __init__(self, name: str = "MainTree", facts: Iterable[str] = ()) -> None:
         self.name = name
         self.uuid = uuid.uuid4().bytes
-        self.xml = ""
         self.tick = 0
         self.versions = 0
+        self.reshaped = False
+        """Whether the last update changed the tree (a growth, a move, a new root)."""
+        self._root: Node | None = None
+        self._xml: tuple[int, str] | None = None
         self.facts: set[str] = set(facts)
         self._uids: dict[int, int] = {}
         self._kept: list[Node] = []
@@ -77,6 +80,7 @@ class TreeState:
             self.tick = record.tick
             self.facts.difference_update(record.removed)
             self.facts.update(record.added)
+        self.reshaped = False
         if record is None or record.expansions or not self._order or (
                 root is not self._order[0]):
             self._reshape(root)
@@ -98,9 +102,10 @@ class TreeState:
             self._buffer += uid.to_bytes(2, "little")
             self._offsets[uid] = len(self._buffer)
             self._buffer.append(self._codes.get(uid, 0))
-        self.xml = dump_running_xml(BehaviorTree(root, self.name), self.uid)
+        self._root = root
         self.uuid = uuid.uuid4().bytes
         self.versions += 1
+        self.reshaped = True
 
     def _number(self, nodes: list[Node]) -> None:
         """Give the new nodes the next uids."""
@@ -156,6 +161,34 @@ class TreeState:
             self._buffer[at] = code
 
     # --- what clients read -----------------------------------------------------------------
+
+    @property
+    def xml(self) -> str:
+        """The tree as BT.CPP writes a tree it runs (made when first asked for after a
+        change: only Groot2 and replay files need it)."""
+        if self._root is None:
+            return ""
+        if self._xml is None or self._xml[0] != self.versions:
+            self._xml = (self.versions, dump_running_xml(BehaviorTree(self._root, self.name),
+                                                         self.uid))
+        return self._xml[1]
+
+    def rows(self) -> list[tuple[int, int, str, str]]:
+        """The tree, depth first: (uid, the parent's uid or 0, kind, name) per node."""
+        parents: dict[int, int] = {}
+        out = []
+        for node in self._order:
+            uid = self._uids[id(node)]
+            out.append((uid, parents.get(uid, 0), node.kind, node.name))
+            for child in node.children:
+                child_uid = self._uids.get(id(child))
+                if child_uid is not None:
+                    parents[child_uid] = uid
+        return out
+
+    def uid_of(self, key: int) -> int:
+        """The uid of the node whose id() is `key` (0: none)."""
+        return self._uids.get(key, 0)
 
     def uid(self, node: Node) -> int:
         """The node's uid (0 for a node past MAX_UID)."""

@@ -14,6 +14,8 @@ import btplan
 from btplan.bt import BehaviorTree, Status
 from btplan.bt.formats.btcpp import dump_xml
 from btplan.bt.trace import TickRecorder
+from btplan.acting.records import TickRecord
+from btplan.monitor.run_monitor import TickUpdate
 from btplan.monitor.tree_state import TreeState
 from btplan.worlds.symbolic import SymbolicWorld
 from btcpp_oracle import BtcppRun, quiet_stdout
@@ -61,6 +63,11 @@ class SideBySide:
         assert trace is not None
         reached = {id(nodes[int(n.id[1:])]): n.status for n in trace.nodes}
         return theirs, ours, self.state.update(self.tree.root, reached)
+
+
+def update_of(transitions: list[tuple[int, int]]) -> TickUpdate:
+    """A tick's update carrying only its transitions (what the servers read of it)."""
+    return TickUpdate(TickRecord(tick=0, status="RUNNING"), transitions, [], None, None)
 
 
 def ask(context: zmq.Context, port: int, kind: str, *parts: bytes,

@@ -17,7 +17,7 @@ import pytest
 
 from btplan.monitor.btlog import MAGIC, BtlogWriter, read_btlog
 from btcpp_oracle import quiet_stdout
-from peers import SideBySide, shape
+from peers import SideBySide, shape, update_of
 
 TREES = ["pick_place.bt", "gripper.bt", "blocksworld.bt", "fetch_cup.bt"]
 
@@ -48,7 +48,7 @@ def test_the_log_matches_filelogger2(domain: str, tmp_path: Path) -> None:
     started = time.time()
     for _ in range(60):
         theirs, ours, transitions = pair.tick()
-        writer.publish(pair.state, transitions)
+        writer.publish(pair.state, update_of(transitions))
         assert theirs == ours
         if ours.value != "RUNNING":
             break

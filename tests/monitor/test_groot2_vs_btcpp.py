@@ -14,7 +14,7 @@ import zmq
 from btplan.bt.formats.btcpp_catalog import BUILTINS
 from btplan.monitor.groot2 import Groot2Server
 from btcpp_oracle import quiet_stdout
-from peers import SideBySide, ask, free_port, models, shape
+from peers import SideBySide, ask, free_port, models, shape, update_of
 
 NEWER = {"TryCatch"}
 """Built-in from BT.CPP 4.10; behaviortreepy ships 4.8."""
@@ -38,7 +38,7 @@ def serve(domain: str) -> tuple[SideBySide, Groot2Server, int, int, object]:
         publisher = bt.Groot2Publisher(pair.reference.tree, theirs)
     ours = free_port()
     server = Groot2Server(ours)
-    server.publish(pair.state, [])
+    server.publish(pair.state, update_of([]))
     return pair, server, ours, theirs, publisher
 
 
@@ -67,7 +67,7 @@ def test_the_tree_and_every_status_buffer_match_btcpp(domain: str, context: zmq.
             statuses += 1
             their_status, our_status, transitions = pair.tick()
             assert their_status == our_status
-            server.publish(pair.state, transitions)
+            server.publish(pair.state, update_of(transitions))
             if our_status.value != "RUNNING":
                 break
         mine, reference = ask(context, ours, "S"), ask(context, theirs, "S")
@@ -108,7 +108,7 @@ def test_the_blackboard_is_msgpack_json_under_the_tree_s_name(context: zmq.Conte
     pair, server, ours, theirs, publisher = serve("pick_place.bt")
     try:
         pair.state.facts.update({"near(start)", "hand_empty()"})
-        server.publish(pair.state, [])
+        server.publish(pair.state, update_of([]))
         mine = ask(context, ours, "B", pair.tree.name.encode())
         reference = ask(context, theirs, "B", pair.tree.name.encode())
         assert mine[0][:6] == reference[0][:6] and len(mine) == len(reference) == 2

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import btplan
 from btplan.acting.config import ActingConfig
-from btplan.monitor.run_monitor import RunMonitor
+from btplan.monitor.run_monitor import RunMonitor, TickUpdate
 from btplan.monitor.tree_state import IDLE_FROM, TreeState
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
@@ -20,7 +20,7 @@ class Snapshots:
     def __init__(self) -> None:
         self.ticks: list[tuple[int, bytes, dict[int, int], str]] = []
 
-    def publish(self, state: TreeState, transitions: list[tuple[int, int]]) -> None:
+    def publish(self, state: TreeState, update: TickUpdate) -> None:
         uids = {id(node): uid for uid, node in state.nodes()}
         self.ticks.append((state.tick, state.uuid, uids, state.xml))
 
