@@ -1,6 +1,7 @@
 """What watching a run costs: ticks per second of the same run with and without the
-Groot2 server (`--groot`) and the replay file (`--btlog`), on a tree of about a
-thousand nodes.
+Groot2 server (`--groot`), the replay file (`--btlog`) and the browser view (`--view`,
+its server keeping the trace's lines; no page attached), on a tree of about a thousand
+nodes.
 
 The run is a generated logistics problem (12 packages) acted on with `keep`, while an
 agent undoes the last action now and then, so the tree keeps acting for the whole run;
@@ -23,6 +24,7 @@ from pathlib import Path
 import btplan
 from btplan.lang.generators import logistics
 from btplan.model import Task
+from btplan.monitor.browser import LIVE_LINES, BrowserView, TraceLines
 from btplan.monitor.btlog import BtlogWriter
 from btplan.monitor.groot2 import Groot2Server
 from btplan.monitor.run_monitor import Monitor, RunMonitor
@@ -69,6 +71,7 @@ def main() -> None:
         "--btlog": lambda: [BtlogWriter(str(folder / "run.btlog"))],
         "--groot --btlog": lambda: [Groot2Server(free_port()),
                                     BtlogWriter(str(folder / "run.btlog"))],
+        "--view": lambda: [BrowserView(TraceLines(keep=LIVE_LINES), "bench", 0)],
     }
     best: dict[str, float] = {}
     size = ticks = 0

@@ -11,7 +11,7 @@ from btplan.errors import InputError, Span
 
 __all__ = ["OPTIONAL_PORTS", "closing_monitors", "open_monitors", "with_default_ports"]
 
-OPTIONAL_PORTS = {"--groot": "1667"}
+OPTIONAL_PORTS = {"--groot": "1667", "--view": "8765"}
 """Options whose port may be left out, and the port they then take."""
 
 
@@ -42,12 +42,20 @@ def check_btlog(path: str | None) -> None:
                          Span("--btlog", 1, 1), "Groot2 opens replay files by that suffix")
 
 
-def open_monitors(groot: int | None, btlog: str | None, world: Any, name: str) -> Any:
+def open_monitors(groot: int | None, btlog: str | None, view: int | None, world: Any,
+                  title: str) -> Any:
     """The run's monitor (a tick view that also makes the trace's lines), with the
-    Groot2 server and the replay file when asked for."""
+    Groot2 server, the replay file and the browser view when asked for."""
     from btplan.monitor.run_monitor import Monitor, RunMonitor
 
     monitors: list[Monitor] = []
+    if view is not None:
+        from btplan.cli.typer_app import stderr
+        from btplan.monitor.browser import LIVE_LINES, BrowserView, TraceLines
+
+        browser = BrowserView(TraceLines(keep=LIVE_LINES), title, view)
+        monitors.append(browser)
+        stderr.print(f"btplan run: the view is at {browser.url}")
     if groot is not None:  # first: the one that can fail (a port in use)
         from btplan.monitor.groot2 import Groot2Server
 
@@ -57,7 +65,7 @@ def open_monitors(groot: int | None, btlog: str | None, world: Any, name: str) -
 
         monitors.append(BtlogWriter(btlog))
     facts = sorted(str(atom) for atom in world.facts())
-    return RunMonitor(monitors, name, facts)
+    return RunMonitor(monitors, "MainTree", facts)
 
 
 @contextmanager

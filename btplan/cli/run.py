@@ -127,6 +127,12 @@ def run(
         help="Serve the growing tree to Groot2 (BehaviorTree.CPP's monitor protocol) on "
              "127.0.0.1:PORT and PORT+1; PORT defaults to 1667. Connect Groot2's monitor "
              "to this machine and port (docs/monitor.md).", show_default=False)] = None,
+    view: Annotated[int | None, typer.Option(
+        "--view", metavar="[PORT]",
+        help="Show the run in the browser as it goes, at http://127.0.0.1:PORT/ (default "
+             "8765; 0: a free port): the tree, coloured by status, with a timeline to "
+             "scrub back. The page keeps the ticks it has once the run ends; `btplan "
+             "view` shows a saved --trace again.", show_default=False)] = None,
     btlog: Annotated[str | None, typer.Option(
         "--btlog", metavar="FILE.btlog",
         help="Write the run as a Groot2 replay file (BehaviorTree.CPP's FileLogger2 "
@@ -160,6 +166,9 @@ def run(
         raise InputError(f"no preset named {preset!r}", Span("--preset", 1, 1),
                          f"presets: {', '.join(PRESETS)}")
     check_port("--groot", groot)
+    if view is not None and not 0 <= view <= 65535:
+        raise InputError(f"--view {view}: a port is a number from 0 to 65535",
+                         Span("--view", 1, 1))
     check_btlog(btlog)
     check_outputs(Output("--trace", trace), Output("--plan-out", plan_out),
                   Output("--record", record), Output("--btlog", btlog),
@@ -197,7 +206,7 @@ def run(
                           preset="paper" if paper else preset, quiet=quiet,
                           world_name=WORLD_NAMES[sim] if world_spec is None else world_spec)
         try:
-            watch = open_monitors(groot, btlog, world, "MainTree")
+            watch = open_monitors(groot, btlog, view, world, domain)
             # The run stops itself at the tick after the budget; the timer is for a tick
             # that does not end (a long expansion): skills are halted on the way out.
             with files, closing_monitors(watch), HardDeadline(timeout, started,

@@ -77,6 +77,10 @@ def test_installed_wheel_reads_both_grammars(tmp_path: Path) -> None:
     names = zipfile.ZipFile(wheel).namelist()
     assert "btplan/grammar/btplan.lark" in names and "btplan/grammar/pddl.lark" in names
     assert "btplan/domains/pick_place.bt" in names and "btplan/domains/scenes/youbot.toml" in names
+    assert {"btplan/monitor/web/view.html", "btplan/monitor/web/view.js",
+            "btplan/monitor/web/view.css"} <= set(names)
+    packages = {str(init.parent.relative_to(ROOT)) for init in (ROOT / "btplan").rglob("__init__.py")}
+    assert {f"{package}/__init__.py" for package in packages} <= set(names)  # none left out
     metadata = zipfile.ZipFile(wheel).read("btplan-0.1.0.dist-info/METADATA").decode()
     assert "License-Expression: MIT" in metadata
 

@@ -52,8 +52,10 @@ def test_the_log_matches_filelogger2(domain: str, tmp_path: Path) -> None:
         assert theirs == ours
         if ours.value != "RUNNING":
             break
+    time.sleep(0.1)  # FileLogger2 writes from a thread of its own, every 10 ms
+    logger.flush()
     del logger
-    gc.collect()  # the logger writes out and closes when it is destroyed
+    gc.collect()  # and closes the file when it is destroyed
     writer.close()
     reference, mine = theirs_path.read_bytes(), ours_path.read_bytes()
     assert layout(mine) == layout(reference) == (MAGIC, 1, 0)
