@@ -54,13 +54,14 @@ def test_a_growing_tree_is_watched_live_by_a_groot2_client() -> None:
         while run.poll() is None and time.monotonic() < deadline:
             try:
                 tree = client.fetch_tree()
+                fetched = client.tree_uuid  # the UUID the tree came with
                 polled = client.poll()
                 board = client.fetch_blackboard(["MainTree"]) or board
             except Exception:  # noqa: BLE001 (not serving yet, or the run just ended)
                 time.sleep(0.05)
                 continue
-            if not uuids or client.tree_uuid != uuids[-1]:
-                uuids.append(client.tree_uuid)
+            if not uuids or fetched != uuids[-1]:
+                uuids.append(fetched)
                 sizes.append(len(tree.by_uid))
             if polled is not None:
                 running.update(uid for uid, state in polled.statuses.items()
