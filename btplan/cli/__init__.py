@@ -36,9 +36,10 @@ def main() -> None:
     from btplan.cli.edge import EXIT_BUG, report_bug
 
     only_the_command_asked_for(sys.argv[1:2])
-    from btplan.cli.monitors import with_default_ports
+    if "--groot" in sys.argv or "--view" in sys.argv:  # ports that may be left out
+        from btplan.cli.monitors import with_default_ports
 
-    sys.argv[1:] = with_default_ports(sys.argv[1:])
+        sys.argv[1:] = with_default_ports(sys.argv[1:])
     try:
         _the_app()(prog_name="btplan")
     except Exception as error:  # commands report their own; this is the last net

@@ -148,6 +148,8 @@ class Groot2Server:
             return self._answer(chr(kind), parts, header)
 
     def _answer(self, kind: str, parts: list[bytes], header: bytes) -> list[bytes]:
+        if kind in "TSB" and not self._xml:
+            return [b"error", b"the run has not made its first tick yet"]
         if kind == "T":
             return [header, self._xml]
         if kind == "S":

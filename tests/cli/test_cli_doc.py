@@ -27,6 +27,7 @@ SECTIONS = {
     "run": [["run"]],
     "export": [["export"]],
     "sweep": [["sweep"]],
+    "view": [["view"]],
     "generate": [["generate", "blocksworld"], ["generate", "gripper"], ["generate", "logistics"],
                  ["generate", "assembly"]],
 }
