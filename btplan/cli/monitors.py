@@ -53,7 +53,10 @@ def open_monitors(groot: int | None, btlog: str | None, view: int | None, world:
         from btplan.cli.typer_app import stderr
         from btplan.monitor.browser import LIVE_LINES, BrowserView, TraceLines
 
-        browser = BrowserView(TraceLines(keep=LIVE_LINES), title, view)
+        from btplan.robot.contract import capabilities_of
+
+        camera = world.camera_png if capabilities_of(world).camera else None
+        browser = BrowserView(TraceLines(keep=LIVE_LINES), title, view, camera=camera)
         monitors.append(browser)
         stderr.print(f"btplan run: the view is at {browser.url}")
     if groot is not None:  # first: the one that can fail (a port in use)

@@ -7,6 +7,8 @@ install and nothing fetched from the internet.
 
 - `GET /` the page, `/view.js`, `/view.css` its parts;
 - `GET /info`: `{"title", "live", "done", "lines"}`;
+- `GET /frame?tick=T`: the camera's last picture at or before tick T (PNG), in a world
+  that has a camera (the PyBullet worlds); at most one every FRAME_GAP seconds;
 - `GET /lines?from=N`: the trace lines from the N-th on (JSON lines). A live run keeps
   its last LIVE_LINES lines; asked for older ones, it answers first with a `base` line
   holding the tree and the facts where the kept lines start.
@@ -17,7 +19,8 @@ from __future__ import annotations
 import json
 import threading
 import time
-from collections import deque
+from collections import OrderedDict, deque
+from collections.abc import Callable
 from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from importlib import resources
@@ -37,6 +40,13 @@ DEFAULT_PORT = 8765
 CLOSE_WAIT = 2.0
 """Seconds a run's end waits for a watching page to fetch its last ticks."""
 
+FRAMES_KEPT = 1000
+"""Camera pictures a live view keeps (the last ones; about 60 kB each)."""
+
+FRAME_GAP = 0.25
+"""Seconds between two pictures at least: a picture takes tens of milliseconds to
+render, more than a tick of a run at full speed."""
+
 LIVE_LINES = 50_000
 """Ticks a live view keeps for scrubbing back; older ones are folded into a base line."""
 
@@ -54,11 +64,11 @@ class TraceLines:
         """Index (in the whole run) of the first line kept."""
         self._base: dict[str, Any] | None = None
         self._facts: set[str] = set()
-        self._lock = threading.Lock()
+        self.lock = threading.Lock()
         self.done = lines is not None
 
     def append(self, line: str) -> None:
-        with self._lock:
+        with self.lock:
             if self._lines.maxlen is not None and len(self._lines) == self._lines.maxlen:
                 self._fold(json.loads(self._lines[0]))
                 self._first += 1
@@ -79,7 +89,7 @@ class TraceLines:
 
     def since(self, start: int) -> tuple[list[str], int]:
         """The lines from index `start` on, and the total so far."""
-        with self._lock:
+        with self.lock:
             total = self._first + len(self._lines)
             if start >= total:
                 return [], total
@@ -93,8 +103,13 @@ class BrowserView:
     """Serves the page and `lines` on host:port from a thread of its own."""
 
     def __init__(self, lines: TraceLines, title: str, port: int = DEFAULT_PORT,
-                 host: str = "127.0.0.1", live: bool = True) -> None:
+                 host: str = "127.0.0.1", live: bool = True,
+                 camera: Callable[[], bytes] | None = None) -> None:
         self.lines, self.title, self.live = lines, title, live
+        self.camera = camera
+        """Takes a PNG picture of the world after each tick (a world with a camera)."""
+        self._frames: OrderedDict[int, bytes] = OrderedDict()
+        self._pictured = float("-inf")
         self.served = 0
         """Lines a page has fetched (0: no page has come yet)."""
         self._told_done = False
@@ -119,6 +134,20 @@ class BrowserView:
 
     def publish(self, state: TreeState, update: TickUpdate) -> None:
         self.lines.append(update.line)
+        now = time.monotonic()
+        if self.camera is not None and now - self._pictured >= FRAME_GAP:
+            self._pictured = now
+            picture = self.camera()
+            with self.lines.lock:
+                self._frames[update.record.tick] = picture
+                while len(self._frames) > FRAMES_KEPT:
+                    self._frames.popitem(last=False)
+
+    def frame(self, tick: int) -> bytes | None:
+        """The last picture taken at or before `tick`, if it is still kept."""
+        with self.lines.lock:
+            taken = [t for t in self._frames if t <= tick]
+            return self._frames[taken[-1]] if taken else None
 
     def close(self) -> None:
         """The run ended: a page that is watching gets the last ticks (and that the run is
@@ -137,7 +166,7 @@ class BrowserView:
         _, total = self.lines.since(1 << 62)
         self._told_done = self.lines.done and self.served >= total
         return {"title": self.title, "live": self.live, "done": self.lines.done,
-                "lines": total}
+                "lines": total, "frames": self.camera is not None}
 
 
 class _Handler(BaseHTTPRequestHandler):
@@ -150,6 +179,15 @@ class _Handler(BaseHTTPRequestHandler):
             self._send(resources.files("btplan.monitor.web").joinpath(name).read_bytes(), kind)
         elif url.path == "/info":
             self._send(json.dumps(self.view.info()).encode(), "application/json")
+        elif url.path == "/frame":
+            try:
+                picture = self.view.frame(int(parse_qs(url.query).get("tick", ["-1"])[0]))
+            except ValueError:
+                picture = None
+            if picture is None:
+                self.send_error(HTTPStatus.NOT_FOUND)
+            else:
+                self._send(picture, "image/png")
         elif url.path == "/lines":
             try:
                 start = int(parse_qs(url.query).get("from", ["0"])[0])

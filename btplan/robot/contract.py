@@ -98,6 +98,8 @@ class Capabilities:
     - `dead_ends`: `dead_ends() -> list[str]`, why the robot may be stuck, for messages.
     - `reports_stopped`: `stopped(key) -> bool`, whether a halted action has come to
       rest; the loop waits for it, a bounded time, on every way out of a run.
+    - `camera`: `camera_png(width, height) -> bytes`, a PNG picture of the world now;
+      `btplan run --view` shows it beside each tick.
     - `closes`: `close()`, called once when `btplan run` ends, however it ends (the CLI
       made the world, so it closes it; `btplan.run` leaves a world it was given open).
     """
@@ -109,6 +111,7 @@ class Capabilities:
     lessons: bool = False
     dead_ends: bool = False
     reports_stopped: bool = False
+    camera: bool = False
     closes: bool = False
 
 

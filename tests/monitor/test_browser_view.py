@@ -13,6 +13,7 @@ import shutil
 import subprocess
 import sys
 import time
+import urllib.request
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -211,3 +212,32 @@ def test_a_3000_node_tree_renders_and_its_search_finds_a_node(browser: object) -
         assert len(drawn(browser)) == 3000
     finally:
         server.close()
+
+
+@pytest.mark.slow
+def test_a_simulated_run_shows_the_camera_beside_the_tree(browser: object) -> None:
+    port = free_port()
+    run = subprocess.Popen([sys.executable, "-m", "btplan", "run", "domains/youbot.bt", "--sim",
+                            "pybullet", "--view", str(port), "--hz", "50", "-q"], cwd=ROOT,
+                           text=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        deadline = time.monotonic() + 60
+        while True:
+            try:
+                browser.get(f"http://127.0.0.1:{port}/")  # type: ignore[attr-defined]
+                ready(browser)
+                break
+            except Exception:  # noqa: BLE001 (not serving yet)
+                if time.monotonic() > deadline or run.poll() is not None:
+                    raise
+                time.sleep(0.2)
+        wait_for(lambda: browser.execute_script(  # type: ignore[attr-defined]
+            "const i = document.getElementById('frame');"
+            "return !i.hidden && i.complete && i.naturalWidth === 320"), 30)
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/frame?tick=100000") as reply:
+            assert reply.read(8) == b"\x89PNG\r\n\x1a\n"
+        _, err = run.communicate(timeout=120)
+        assert run.returncode == 0, err
+    finally:
+        if run.poll() is None:
+            run.kill()

@@ -25,7 +25,7 @@ const view = {
   collapsed: new Set(),
   drawn: null,      // {version, elements: Map uid -> <g>, positions}
   matches: [], matchAt: -1,
-  playing: null, live: false, done: true, polling: false,
+  playing: null, live: false, done: true, polling: false, frames: false,
 };
 
 const $ = (id) => document.getElementById(id);
@@ -253,6 +253,11 @@ function showPanel(statuses) {
   const line = view.lines[view.at];
   $("tick-head").textContent = `tick ${line.tick}: ${line.status || ""}${line.goal ? " (goal " + line.goal + ")" : ""}`;
   $("tick-label").textContent = `tick ${line.tick} of ${view.lines[view.lines.length - 1].tick}`;
+  const picture = $("frame");
+  if (view.frames && line.tick !== undefined) {
+    picture.hidden = false;
+    picture.src = `frame?tick=${line.tick}`;
+  }
   const events = $("tick-events");
   events.textContent = "";
   const rows = [
@@ -395,7 +400,7 @@ async function start() {
   const info = await (await fetch("info", {cache: "no-store"})).json();
   document.title = `${info.title} - btplan view`;
   $("title").textContent = info.title;
-  view.live = info.live; view.done = info.done;
+  view.live = info.live; view.done = info.done; view.frames = info.frames;
   await fetchLines();
   $("scrub").max = String(Math.max(0, view.lines.length - 1));
   drawMarks();
@@ -406,6 +411,7 @@ async function start() {
   if (view.live && !view.done) setTimeout(poll, POLL_MS);
 }
 
+$("frame").addEventListener("error", () => { $("frame").hidden = true; });
 $("scrub").addEventListener("input", (e) => show(Number(e.target.value)));
 $("first").addEventListener("click", () => show(0));
 $("prev").addEventListener("click", () => show(view.at - 1));

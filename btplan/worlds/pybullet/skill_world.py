@@ -17,6 +17,7 @@ from btplan.errors import WorldError
 from btplan.model import Atom, GroundAction, Task, instantiate
 from btplan.worlds.logs import RecentLog
 from btplan.worlds.pybullet import motion
+from btplan.worlds.pybullet.record import Camera
 from btplan.worlds.pybullet.skills import Skill
 
 Key = tuple[str, tuple[str, ...]]
@@ -25,6 +26,9 @@ Key = tuple[str, tuple[str, ...]]
 class _State(Protocol):
     @property
     def seconds(self) -> float: ...
+
+    @property
+    def sim(self) -> Camera: ...
 
     def close(self) -> None: ...
 
@@ -122,6 +126,18 @@ class SkillWorld(Generic[StateT, ConditionsT]):
         if skill is not None:
             self.halted.append(self.ground(key))
             skill.halt()
+
+    def camera_png(self, width: int = 320, height: int = 200) -> bytes:
+        """A PNG picture of the robot now, labelled with the sim time and the action
+        (what `btplan run --view` shows beside each tick)."""
+        import io
+
+        from btplan.worlds.pybullet.record import frame
+
+        image = frame(self.state, f"t={self.sim_seconds:5.1f}s  {self.current}", width, height)
+        buffer = io.BytesIO()
+        image.save(buffer, format="PNG", optimize=False, compress_level=1)
+        return buffer.getvalue()
 
     # --- lifecycle -----------------------------------------------------------------------
 

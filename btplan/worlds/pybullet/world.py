@@ -110,7 +110,7 @@ class PyBulletWorld(SkillWorld[SceneState, Conditions]):
 
     capabilities = Capabilities(refines=True, own_values=True, continuous=True,
                                 outside_changes=True,
-                                lessons=True, dead_ends=True, closes=True)
+                                lessons=True, dead_ends=True, camera=True, closes=True)
     """Facts change while an action runs; agents push cubes while the robot acts; a
     failed grasp teaches a side not to try again; `dead_ends` and `close` are offered."""
 

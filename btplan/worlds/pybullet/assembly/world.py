@@ -27,7 +27,7 @@ from btplan.worlds.pybullet.skill_world import SkillWorld
 class AssemblyWorld(SkillWorld[AssemblyState, AssemblyConditions]):
     """Two Pandas across a table, parts to assemble on a fixture; see the module docstring."""
 
-    capabilities = Capabilities(refines=True, closes=True)
+    capabilities = Capabilities(refines=True, camera=True, closes=True)
 
     def __init__(self, task: Task, scene: AssemblyScene, seed: int = 0, gui: bool = False,
                  verbose: bool = False) -> None:
