@@ -299,9 +299,12 @@ class SearchRun:
             if self.landmark_preferred and future & ~state:
                 adds, wanted = packed.add_mask, future & ~state
                 relaxed = relaxed | {i for i in applicable if adds[i] & wanted}
+            bound = self.max_stored
             for i in applicable:
                 if i in self.banned:
                     continue
+                if bound is not None and len(parents) > bound:
+                    break  # one state's successors may be thousands: stop at the bound
                 child = packed.apply(i, state)
                 if child in parents and (child in reached or keys[child] <= h):
                     continue  # waiting already, from a parent estimated no worse

@@ -163,6 +163,7 @@ class _Search:
         self.clock, self.finds = clock, finds
         self.turns: list[tuple[float, float]] = []
         self.proof = None
+        self.too_wide = ""
 
     def resume(self, until: float) -> list[str] | None:
         self.turns.append((self.clock.now, until))

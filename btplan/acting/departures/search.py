@@ -29,6 +29,8 @@ class LastResortSearch(Departure):
         """Plan the stuck condition `node` by search, or None."""
         loop = self.loop
         rescuer = self._rescuer()
+        if rescuer is None:
+            return None
         from btplan.acting.departures.refined_search import RefinedSearch
 
         state = loop.world.facts()
@@ -41,9 +43,10 @@ class LastResortSearch(Departure):
         loop.adopt(steps, [*checks, node])
         return loop.record(literal, steps, 0, 0)
 
-    def _rescuer(self) -> Rescuer:
+    def _rescuer(self) -> Rescuer | None:
         """The search engine, made when something is first stuck: over the world's
-        refined values in a world that refines them, the task's groundings otherwise."""
+        refined values in a world that refines them, the task's groundings otherwise
+        (None: the groundings are too many to search, AchieverIndex.fits_search)."""
         if self.rescuer is None:
             from btplan.acting.departures.refined_search import RefinedSearch, refines_for
             from btplan.planner.rescue import Rescuer
@@ -51,8 +54,10 @@ class LastResortSearch(Departure):
             loop = self.loop
             options, index = loop.options, loop.index
             mutexes = index.mutexes if options.mutexes else None
-            engine = (RefinedSearch(loop.task, loop.world) if refines_for(loop.task, loop.world)
-                      else index.subgoal_search)
+            refined = refines_for(loop.task, loop.world)
+            if not refined and not index.fits_search():
+                return None
+            engine = RefinedSearch(loop.task, loop.world) if refined else index.subgoal_search
             self.rescuer = Rescuer(loop.task, engine, mutexes)
         return self.rescuer
 

@@ -118,11 +118,7 @@ def packed_for(models: AchieverIndex, executed: Sequence[GroundAction]
     Each action's masks are ints as long as its highest atom number: a 100-block
     blocksworld's 20,000 actions over 10,000 atoms took about 110 MB, and 200 blocks
     would take 16 times that."""
-    if models.has_packed:
-        return models.packed, True
-    actions = models.relaxed.actions
-    atoms = len({a for action in actions for a in (*action.add, *action.delete)})
-    if len(actions) * atoms // 2 <= PACKED_BYTES:
+    if models.has_packed or models.packed_bytes <= PACKED_BYTES:
         return models.packed, True
     own = {a.key: a for a in executed if not a.delete_patterns}
     return PackedActions(list(own.values())), False

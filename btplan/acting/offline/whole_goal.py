@@ -26,6 +26,21 @@ WHOLE_STORED = 2_000_000
 """States the whole-goal search may keep, expanded or waiting: a few hundred bytes
 each as packed ints (child-snack's states have a thousand successors)."""
 
+STORED_BYTES = 256 << 20
+"""About the most memory the kept states may take. A state is a packed int of one bit
+per atom: with ten thousand balls in gripper, 5 kB a state and 20,000 successors each,
+two million states would be ten gigabytes; the search gives up before (and
+backchaining goes on alone), as a planner that needs only the problem's size should."""
+
+STATE_OVERHEAD = 240
+"""Bytes a kept state costs beyond its bits: its entries in the parents and keys
+tables and in the queues."""
+
+
+def stored_bound(atoms: int) -> int:
+    """States the search may keep for a model of `atoms` atoms (STORED_BYTES)."""
+    return max(1_000, min(WHOLE_STORED, STORED_BYTES // (atoms // 8 + STATE_OVERHEAD)))
+
 EARLY_SHARE = 0.5
 """The share of the time left that the search gets in its early slice."""
 
@@ -39,19 +54,26 @@ class WholeGoalSearch:
         """Why no plan exists, when h^2 proves it (then nothing is searched)."""
         self._run: SearchRun | Portfolio | None = None
         self._checked = False
+        self.too_wide = ""
+        """Why the search is left out on this problem (its groundings would not fit)."""
 
     def resume(self, until: float | None) -> list[GroundAction] | None:
         """Search on until a plan is found (returned), the search is over, or `until`."""
         if not self._checked:
             self._checked = True
             self.proof = unsolvable(self.task, self.models)
-        if self.proof is not None:
+            if not self.models.fits_search():
+                self.too_wide = (f"too wide to search whole ({len(self.models.relaxed.actions)} "
+                                 f"groundings as bit masks would take about "
+                                 f"{self.models.packed_bytes >> 20} MB)")
+        if self.proof is not None or self.too_wide:
             return None
         if self._run is None:
             start = SymbolicWorld(self.task, seed=self.seed).facts()
-            self._run = self.models.subgoal_search.begin(
+            engine = self.models.subgoal_search
+            self._run = engine.begin(
                 start, list(self.task.goal_literals), max_states=WHOLE_STATES,
-                max_stored=WHOLE_STORED, portfolio=True)
+                max_stored=stored_bound(len(engine.packed.atoms)), portfolio=True)
         if self._run.done:
             return self._run.plan
         return self._run.resume(until)
@@ -59,6 +81,8 @@ class WholeGoalSearch:
     def why(self, deadline: float | None) -> str:
         """Why no plan was found, and after how many states."""
         run = self._run
+        if self.too_wide:
+            return self.too_wide
         if run is None:
             return "not begun"
         reason = ("no plan exists" if run.exhausted
@@ -109,7 +133,8 @@ class SearchTurns:
     def take(self) -> list[GroundAction] | None:
         """The plan, when a turn is due now and the search finds one in it."""
         now = time.perf_counter()
-        if now < self.next_turn or now >= self.until or self.last.proof is not None:
+        if (now < self.next_turn or now >= self.until or self.last.proof is not None
+                or self.last.too_wide):
             return None
         self.turns += 1
         steps = self.last.resume(min(now + max(now - self.since, MIN_TURN), self.until))
