@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from types import FrameType, TracebackType
 
 TYPE_CHECKING = False
@@ -38,6 +40,7 @@ class Interrupts:
     def __init__(self) -> None:
         self.signum: int | None = None
         self._previous: dict[int, Any] = {}
+        self._reading = False
 
     def __call__(self) -> bool:
         return self.signum is not None
@@ -62,10 +65,23 @@ class Interrupts:
             signal.signal(number, handler)
         self._previous.clear()
 
+    @contextmanager
+    def reading(self) -> Iterator[None]:
+        """While inputs are read: a signal ends the reading at once (ReadInterrupted), also
+        an `open()` blocked on a named pipe no one writes to, which Python would
+        otherwise retry after the handler, for ever."""
+        self._reading = True
+        try:
+            yield
+        finally:
+            self._reading = False
+
     def _handle(self, signum: int, frame: FrameType | None) -> None:
         if self.signum is not None:
             os._exit(128 + signum)
         self.signum = signum
+        if self._reading:
+            raise ReadInterrupted(signum)
         from signal import Signals
 
         name = "Ctrl-C" if signum == signal.SIGINT else Signals(signum).name
@@ -74,6 +90,14 @@ class Interrupts:
             os.write(2, message.encode())
         except OSError:
             pass
+
+
+class ReadInterrupted(BaseException):
+    """A signal came while the inputs were read (Interrupts.reading)."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.exit_code = 128 + signum
 
 
 class TimeLimitReached(BaseException):

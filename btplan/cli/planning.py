@@ -15,7 +15,7 @@ from pathlib import Path
 
 from btplan.cli.console import escape
 from btplan.cli.edge import CommandExit, stderr
-from btplan.cli.interrupts import HardDeadline, Interrupts, TimeLimitReached
+from btplan.cli.interrupts import HardDeadline, Interrupts, ReadInterrupted, TimeLimitReached
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Interrupted, PlanningError
 from btplan.records import replace
@@ -96,7 +96,8 @@ def _plan_and_write(domain: str, problem: str | None, fmt: str | None, out: str,
         options = replace(options, search_stuck=False)
     with Interrupts() as interrupted, HardDeadline(timeout or None, started) as limit:
         try:
-            task = load(resolve(domain), *([problem] if problem is not None else []))
+            with interrupted.reading():
+                task = load(resolve(domain), *([problem] if problem is not None else []))
             limit.phase = "planning"
             left = (max(0.001, started + timeout - time.monotonic()) if timeout else None)
             with collecting():
@@ -112,6 +113,9 @@ def _plan_and_write(domain: str, problem: str | None, fmt: str | None, out: str,
             stderr.print(f"[bold yellow]interrupted[/]: {escape(error.progress)}; "
                          "nothing written")
             raise CommandExit(interrupted.exit_code) from None
+        except ReadInterrupted as stopped:
+            stderr.print("[bold yellow]interrupted[/] while reading the input; nothing written")
+            raise CommandExit(stopped.exit_code) from None
         finally:
             progress.close()
     if trace_expansions is not None:

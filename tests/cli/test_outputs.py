@@ -355,3 +355,28 @@ def test_the_expansion_folder_may_not_overwrite_an_input_or_an_output(tmp_path: 
     other = runner.invoke(app, ["plan", PICK, "-q", "-o", str(steps / "expansion_002.dot"),
                                 "--trace-expansions", str(steps)])
     assert other.exit_code == 2 and "would overwrite" in other.output
+
+
+def test_one_sigterm_ends_a_plan_whose_input_pipe_has_no_writer(tmp_path: Path) -> None:
+    """open() of a named pipe blocks until a writer comes, and Python retries it after
+    every signal handler; while inputs are read, the handler ends the reading instead."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    pipe = tmp_path / "domain.fifo"
+    os.mkfifo(pipe)
+    planning = subprocess.Popen([sys.executable, "-m", "btplan", "plan", str(pipe)],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(1.5)  # started, and blocked in open()
+    planning.send_signal(signal.SIGTERM)
+    try:
+        _, err = planning.communicate(timeout=20)
+    finally:
+        if planning.poll() is None:
+            planning.kill()
+    # 143 and its message once btplan has started; -15 (the default action) before
+    assert planning.returncode in (143, -signal.SIGTERM), err
+    if planning.returncode == 143:
+        assert "interrupted while reading the input" in err and "Traceback" not in err
