@@ -6,6 +6,8 @@ the same PDDL files; btplan with `--timeout T`, pyperplan (GBFS with h_FF) kille
 The table gives each one's wall seconds, exit, and peak RSS; for btplan also how far
 past the limit it ended (the target: within 10% of T, or 0.5 s).
 
+Then `btplan sweep --timeout T` on runs that all go past T: one run's wall time.
+
     python bench/limits.py                      # N = 10^2 .. 10^5, T = 5 s
     python bench/limits.py --sizes 100 1000 --timeout 2
 """
@@ -50,6 +52,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[100, 1000, 10_000, 100_000])
     parser.add_argument("--timeout", type=float, default=5.0)
+    parser.add_argument("--sweep-size", type=int, default=100_000,
+                        help="balls of the problem the sweep's runs go past the limit on")
     args = parser.parse_args(argv)
     limit = args.timeout
     print(f"gripper, N balls in room a, goal: one ball in room b; --timeout {limit:g} s")
@@ -75,8 +79,30 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{balls:>7} | {seconds:>8.2f} {str(code):>4} {past:>+6.2f} {rss:>8.1f} | "
                   f"{p_seconds:>11.2f} {'kill' if p_code is None else p_code:>4} "
                   f"{p_rss:>8.1f}")
+        held &= sweep_timeouts(folder, domain, args.sweep_size, limit)
     print(f"--timeout held within 10% or 0.5 s on every size: {'yes' if held else 'no'}")
     return 0
+
+
+def sweep_timeouts(folder: Path, domain: Path, balls: int, limit: float) -> bool:
+    """`btplan sweep --timeout` cuts each run: two sweeps of runs that all go past the
+    limit, of 2 and of 4 runs, one worker; the difference over 2 is one run's wall time,
+    without the sweep's own start and end."""
+    task = folder / f"p{balls}.pddl"
+    task.write_text(problem(balls))
+    times = []
+    for runs in (2, 4):
+        argv = [sys.executable, "-m", "btplan", "sweep", str(domain), str(task), "--seeds",
+                f"0:{runs}", "--rates", "0", "--method", "btplan", "--jobs", "1", "--timeout",
+                f"{limit:g}", "-o", str(folder / "rows.csv"), "-q"]
+        code, seconds, _, _ = measure(argv, runs * limit + 60, str(folder))
+        assert code == 1, f"every run should end at the limit (exit {code})"
+        times.append(seconds)
+    per_run = (times[1] - times[0]) / 2
+    past = per_run - limit
+    print(f"sweep --timeout {limit:g} s, {balls} balls, one worker: {per_run:.2f} s a run "
+          f"({past:+.2f} s past the limit)")
+    return past <= max(0.1 * limit, 0.5)
 
 
 if __name__ == "__main__":

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import os
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from types import FrameType, TracebackType
 
@@ -126,6 +126,10 @@ class HardDeadline:
         self.grace = self.GRACE if grace is None else grace
         self.phase = "reading the task"
         self._armed = False
+        self.expire: Callable[[str], None] | None = None
+        """Called with the phase when the timer goes off, before TimeLimitReached is
+        raised: work with nothing to clean up may end the process there, instead of
+        unwinding (and freeing) hundreds of megabytes of grounded model first."""
 
     def __enter__(self) -> Self:
         if self.seconds:
@@ -151,6 +155,8 @@ class HardDeadline:
         self.disarm()
 
     def _handle(self, signum: int, frame: FrameType | None) -> None:
+        if self.expire is not None:
+            self.expire(self.phase)
         raise TimeLimitReached
 
 

@@ -14,7 +14,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from btplan.cli.console import escape
-from btplan.cli.edge import CommandExit, stderr
+from btplan.cli.edge import EXIT_FAILED, CommandExit, stderr
 from btplan.cli.interrupts import HardDeadline, Interrupts, ReadInterrupted, TimeLimitReached
 from btplan.cli.outputs import STDIO, Output, check_outputs, write_atomic
 from btplan.errors import InputError, Interrupted, PlanningError
@@ -95,6 +95,7 @@ def _plan_and_write(domain: str, problem: str | None, fmt: str | None, out: str,
     if no_search and options is not None:
         options = replace(options, search_stuck=False)
     with Interrupts() as interrupted, HardDeadline(timeout or None, started) as limit:
+        limit.expire = lambda phase: _out_of_time(timeout, phase)
         try:
             with interrupted.reading():
                 task = load(resolve(domain), *([problem] if problem is not None else []))
@@ -256,3 +257,13 @@ def _improvement(s: PlanStats) -> str:
     return (f"; plan improvement removed {s.removed} of {s.actions_executed + s.removed} steps "
             f"({s.eliminated} by action elimination, {searched} by neighbourhood search, "
             f"{s.improve_seconds:.2f} s)")
+
+
+def _out_of_time(timeout: float, phase: str) -> None:
+    """The time limit went off: nothing is written yet and nothing needs cleaning up, so
+    the process ends here (as `leave` does), without first freeing the model."""
+    from btplan.cli.lean import leave
+
+    stderr.print(f"[bold red]failed:[/] the time limit ({timeout:g} s) was reached while "
+                 f"{escape(phase)}; nothing written")
+    leave(EXIT_FAILED)
