@@ -28,7 +28,10 @@ def main() -> None:
     """
     gc.disable()
     try:
+        from btplan.cli import edge
         from btplan.cli.lean import main_fast
+
+        edge.console = True
 
         main_fast()  # exits when it could run the command itself
     finally:  # a caller that catches the exit (a test) gets its collector back

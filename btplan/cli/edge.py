@@ -60,6 +60,12 @@ debug_flag = Flag()
 stderr = LazyConsole(stderr=True)
 
 
+console = False
+"""Whether btplan runs as the console script (`btplan.cli.main`), which may end the
+process with `lean.leave`; a caller that runs the app in its own process (a test) must
+get control back."""
+
+
 class CommandExit(Exception):
     """A command ends here with this exit code, its message already printed."""
 

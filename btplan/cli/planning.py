@@ -13,6 +13,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from btplan.cli import edge
 from btplan.cli.console import escape
 from btplan.cli.edge import EXIT_FAILED, CommandExit, stderr
 from btplan.cli.interrupts import HardDeadline, Interrupts, ReadInterrupted, TimeLimitReached
@@ -95,7 +96,8 @@ def _plan_and_write(domain: str, problem: str | None, fmt: str | None, out: str,
     if no_search and options is not None:
         options = replace(options, search_stuck=False)
     with Interrupts() as interrupted, HardDeadline(timeout or None, started) as limit:
-        limit.expire = lambda phase: _out_of_time(timeout, phase)
+        if edge.console:
+            limit.expire = lambda phase: _out_of_time(timeout, phase)
         try:
             with interrupted.reading():
                 task = load(resolve(domain), *([problem] if problem is not None else []))
@@ -262,8 +264,8 @@ def _improvement(s: PlanStats) -> str:
 def _out_of_time(timeout: float, phase: str) -> None:
     """The time limit went off: nothing is written yet and nothing needs cleaning up, so
     the process ends here (as `leave` does), without first freeing the model."""
-    from btplan.cli.lean import leave
+    from btplan.cli import lean
 
     stderr.print(f"[bold red]failed:[/] the time limit ({timeout:g} s) was reached while "
                  f"{escape(phase)}; nothing written")
-    leave(EXIT_FAILED)
+    lean.leave(EXIT_FAILED)
