@@ -43,6 +43,9 @@ FORBIDDEN: dict[str, tuple[str, ...]] = {
     "btplan.baselines": ("btplan.cli", "btplan.sweep", "btplan.acting.loop",
                          "btplan.acting.offline", "btplan.acting.online"),
     "btplan.sweep": ("btplan.cli",),
+    # The ROS 2 bridge is a robot (btplan.robot) with monitors; it never reaches into the loop.
+    "btplan.ros": ("btplan.cli", "btplan.sweep", "btplan.acting", "btplan.planner",
+                   "btplan.lang", "btplan.worlds"),
 }
 ALLOWED_SELF = {"btplan.model", "btplan.errors"}
 BENEATH_ALL = "btplan.records"

@@ -43,9 +43,10 @@ def check_btlog(path: str | None) -> None:
 
 
 def open_monitors(groot: int | None, btlog: str | None, view: int | None, world: Any,
-                  title: str) -> Any:
+                  title: str, more: Sequence[Any] = ()) -> Any:
     """The run's monitor (a tick view that also makes the trace's lines), with the
-    Groot2 server, the replay file and the browser view when asked for."""
+    Groot2 server, the replay file and the browser view when asked for, and `more`
+    (a ROS 2 robot's tree topics)."""
     from btplan.monitor.run_monitor import Monitor, RunMonitor
 
     monitors: list[Monitor] = []
@@ -67,6 +68,7 @@ def open_monitors(groot: int | None, btlog: str | None, view: int | None, world:
         from btplan.monitor.btlog import BtlogWriter
 
         monitors.append(BtlogWriter(btlog))
+    monitors.extend(more)
     facts = sorted(str(atom) for atom in world.facts())
     return RunMonitor(monitors, "MainTree", facts)
 

@@ -44,6 +44,7 @@ EXAMPLES = """Examples:
   btplan run domains/pick_place_obstacle.bt --scenario examples/example2.dist
   btplan run domains/pick_place_obstacle.bt --scenario examples/example2.dist --paper
   btplan run domains/pick_place.bt --world examples/my_robot.py:FetchRobot --hz 10
+  btplan run domains/pick_place_obstacle.bt --ros examples/ros/example2.toml --hz 10
   btplan run domains/pick_place.bt --keep --disturb 'undo:Place@p=0.05' --max-ticks 500
   btplan run domains/youbot.bt --sim pybullet -q --trace run.jsonl --plan-out p.plan
   btplan run domains/pick_place.bt --plan-out - | wc -l
@@ -117,6 +118,11 @@ def run(
         help="Act in your own robot: a class (or factory) in a Python file or module, "
              "e.g. my_robot.py:Robot or my_package.robot:Robot, called with the task "
              "(see docs/robot.md).", show_default=False)] = None,
+    ros: Annotated[str | None, typer.Option(
+        "--ros", metavar="FILE.toml",
+        help="Act on a ROS 2 robot: its action servers and topics, as the binding file "
+             "maps them (docs/ros.md). Needs ROS 2 for Python: pip install 'btplan[ros]'.",
+        show_default=False)] = None,
     gui: Annotated[bool, typer.Option(
         "--gui", help="Open the PyBullet window (--sim pybullet).")] = False,
     record: Annotated[str | None, typer.Option(
@@ -173,7 +179,8 @@ def run(
     check_outputs(Output("--trace", trace), Output("--plan-out", plan_out),
                   Output("--record", record), Output("--btlog", btlog),
                   inputs=[domain, *(p for p in (problem, scenario) if p),
-                          *([world_spec.rpartition(":")[0]] if world_spec else [])])
+                          *([world_spec.rpartition(":")[0]] if world_spec else []),
+                          *([ros] if ros else [])])
     task = acting.load(resolve(domain), *([problem] if problem is not None else []))
     specs = [parse_spec(text, Span("--disturb", 1, 1)) for text in disturb or []]
     scene: str | None = None
@@ -183,7 +190,14 @@ def run(
         else:
             specs.extend(parse_scenario(read_text(scenario), scenario))
     with Interrupts() as interrupted:  # a signal while the world opens stops before tick 1
-        if world_spec is not None:
+        if ros is not None:
+            from btplan.cli.ros_world import open_ros_robot
+
+            if world_spec is not None or sim is not Sim.symbolic or gui or record or fail_prob:
+                raise InputError("--ros cannot be combined with --world, --sim, --gui, "
+                                 "--record or --fail-prob", Span("--ros", 1, 1))
+            world, scene_agents = open_ros_robot(ros, task), list[Any]()
+        elif world_spec is not None:
             from btplan.cli.user_world import open_user_world
 
             if sim is not Sim.symbolic or gui or record or fail_prob:
@@ -204,9 +218,13 @@ def run(
 
         settings = Acting(seed=seed, max_ticks=max_ticks, rate=hz, keep=keep,
                           preset="paper" if paper else preset, quiet=quiet,
-                          world_name=WORLD_NAMES[sim] if world_spec is None else world_spec)
+                          world_name=(f"the ROS 2 robot of {ros}" if ros is not None
+                                      else WORLD_NAMES[sim] if world_spec is None
+                                      else world_spec))
         try:
-            watch = open_monitors(groot, btlog, view, world, domain)
+            watch = open_monitors(groot, btlog, view, world, domain,
+                                  [m for m in [world.tree_topics()] if m is not None]
+                                  if ros is not None else [])
             # The run stops itself at the tick after the budget; the timer is for a tick
             # that does not end (a long expansion): skills are halted on the way out.
             with files, closing_monitors(watch), HardDeadline(timeout, started,

@@ -9,6 +9,7 @@ from __future__ import annotations
 from functools import cache
 from typing import Any
 
+import btplan.lang.lark_version  # noqa: F401  (lark 1.x, checked before it is used)
 from lark import Lark, Token, Transformer_NonRecursive
 from lark.exceptions import UnexpectedInput, VisitError
 

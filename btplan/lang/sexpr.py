@@ -20,6 +20,7 @@ from btplan.limits import MAX_NESTING, PDDL_BRACKETS, check_nesting, check_size
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
+    import btplan.lang.lark_version  # noqa: F401
     from lark import Lark, Token, Transformer_NonRecursive
 
 WORDS = {
@@ -96,6 +97,7 @@ Item = Word | Group
 @cache
 def pddl_parser() -> Lark:
     """The PDDL s-expression parser, loaded from the installed package data."""
+    import btplan.lang.lark_version  # noqa: F401
     from lark import Lark
 
     return Lark.open_from_package("btplan.grammar", "pddl.lark", parser="lalr")

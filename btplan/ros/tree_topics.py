@@ -1,0 +1,47 @@
+"""The growing tree on ROS 2 topics, for ros2 bag and other nodes.
+
+- `NS/tree` (std_msgs/String, kept for late subscribers): the tree as BehaviorTree.CPP
+  XML with a `_uid` on every node (btplan.monitor.tree_state), whenever it changes;
+- `NS/statuses` (std_msgs/String): one JSON object per tick,
+  `{"tick": N, "status": ..., "statuses": [[uid, status], ...], "grew": [...]}`.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from btplan.monitor.tree_state import TreeState
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from btplan.monitor.run_monitor import TickUpdate
+
+__all__ = ["TreeTopics"]
+
+
+class TreeTopics:
+    """A run's monitor that publishes on the robot's node (module docstring)."""
+
+    def __init__(self, node: Any, namespace: str) -> None:
+        from rclpy.qos import DurabilityPolicy, QoSProfile
+        from std_msgs.msg import String
+
+        self._string = String
+        kept = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+        base = namespace.rstrip("/")
+        self.tree = node.create_publisher(String, f"{base}/tree", kept)
+        self.statuses = node.create_publisher(String, f"{base}/statuses", 10)
+        self._version = -1
+
+    def publish(self, state: TreeState, update: TickUpdate) -> None:
+        if state.versions != self._version:
+            self._version = state.versions
+            self.tree.publish(self._string(data=state.xml))
+        record = update.record
+        self.statuses.publish(self._string(data=json.dumps({
+            "tick": record.tick, "status": record.status, "statuses": update.statuses,
+            "grew": [e.condition for e in record.expansions]})))
+
+    def close(self) -> None:
+        pass
