@@ -66,13 +66,19 @@ def failing_actions(root: Node) -> list[str]:
     return sorted({n.name for n in root.walk() if isinstance(n, Action) and n.status is FAILURE})
 
 
+def world_says(skills: Skills) -> str:
+    """What the world knows of why it may be stuck (`dead_ends`: a stale sensor, a grasp
+    that cannot work), as "; ..." to add to a reason, or ""."""
+    world = skills.world
+    found = world.dead_ends() if skills.capabilities.dead_ends else []  # type: ignore[attr-defined]
+    return f"; {'; '.join(found)}" if found else ""
+
+
 def loop_reason(expansions: int, skills: Skills) -> str:
     """The world came back to a state it was in, under the same tree."""
     recent = [str(a) for a in skills.executed[-6:]]
     tail = f"; last actions: {', '.join(recent)}" if recent else ""
-    world = skills.world  # a world may know what it cannot do
-    found = world.dead_ends() if skills.capabilities.dead_ends else []  # type: ignore[attr-defined]
-    known = f"; {'; '.join(found)}" if found else ""
+    known = world_says(skills)
     return (
         "the world came back to an earlier state with no new expansion "
         f"(after {expansions} expansions){known}{tail}"

@@ -20,6 +20,7 @@ from typing import Any
 
 from btplan.acting.clock import Clock
 from btplan.acting.config import ACTING_PLANNER, ActingConfig
+from btplan.acting.diagnosis import world_says
 from btplan.acting.loop import BlendedLoop
 from btplan.acting.offline_turns import OfflineTurns
 from btplan.acting.pacing import Pacer, Stop
@@ -220,7 +221,7 @@ def _drive(loop: BlendedLoop, pacer: Pacer, recorder: Recorder, max_ticks: int |
             return True, "goal reached"
     if keep and held:
         return True, f"the goal held at the last of {ticks} ticks"
-    return False, f"the goal was not reached within {ticks} ticks"
+    return False, f"the goal was not reached within {ticks} ticks{world_says(loop.skills)}"
 
 
 def _halt_everything(loop: BlendedLoop, config: ActingConfig,

@@ -10,6 +10,7 @@ import typer
 
 from btplan.cli.typer_app import EXIT_BAD_INPUT, app, format_input_error, guarded, stderr
 from btplan.cli.console import LazyConsole, escape
+from btplan.errors import InputError, Span
 
 if TYPE_CHECKING:
     from btplan.lang import Collection
@@ -22,6 +23,7 @@ EXAMPLES = """Examples:
   btplan check domains/pick_place.bt
   btplan check domain.pddl problem.pddl
   btplan check --json domains/blocksworld.bt | jq '.problems[].name'
+  btplan check domains/pick_place_obstacle.bt --ros examples/ros/example2.toml
 """
 
 
@@ -35,6 +37,10 @@ def check(
     ] = False,
     quiet: Annotated[bool, typer.Option(
         "-q", "--quiet", help="Print nothing when all is well; errors only.")] = False,
+    ros: Annotated[str | None, typer.Option(
+        "--ros", metavar="FILE.toml",
+        help="Also check a ROS 2 binding file against the domain and the installed ROS 2 "
+             "types (docs/ros.md).", show_default=False)] = None,
 ) -> None:
     """Check domains and problems; print a summary, or every error with its place."""
     from btplan.lang import InputErrors, collect  # the readers: only when a command reads
@@ -47,6 +53,15 @@ def check(
             stderr.print(f"[bold red]error:[/] {escape(format_input_error(error))}")
         stderr.print(f"{len(errors.errors)} errors")
         raise typer.Exit(EXIT_BAD_INPUT) from None
+    if ros is not None:
+        from btplan.cli.ros_world import check_ros_bindings
+
+        if len(collection.domains) != 1:
+            raise InputError(f"--ros checks bindings against one domain; {len(collection.domains)} "
+                             "were given", Span("--ros", 1, 1))
+        bound = check_ros_bindings(ros, collection.domains[0])
+        if not quiet:
+            stdout.print(escape(bound))
     if quiet:
         return
     for remark in collection.warnings:

@@ -2,7 +2,9 @@
 services, behind the robot contract (btplan.robot.Robot).
 
 An action leaf's start sends a goal to its action server; the loop polls it each tick:
-RUNNING until the result, SUCCESS when the goal succeeded, FAILURE when it was rejected,
+RUNNING until the result, SUCCESS when the goal succeeded (once every state topic has
+said something since, so that the loop reads the action's effects, not the state before
+it: SETTLE), FAILURE when it was rejected,
 aborted or cancelled, or no answer came within the binding's timeouts (the reason is
 the failure's message in the trace). Halting an action cancels its goal; `stopped`
 answers once the server has answered the cancel (or `cancel_wait` has passed), which
@@ -28,7 +30,10 @@ from btplan.records import replace
 from btplan.robot.api import Robot
 from btplan.ros.bindings import ActionBinding, Bindings, ConditionBinding, field_paths, message_type
 
-__all__ = ["GoalSkill", "RosRobot", "rclpy_origin"]
+__all__ = ["SETTLE", "GoalSkill", "RosRobot", "rclpy_origin"]
+
+SETTLE = 0.5
+"""Seconds a succeeded goal waits, at most, for the state topics to show its effects."""
 
 
 def rclpy_origin() -> str:
@@ -108,8 +113,8 @@ class RosRobot(Robot):
         self.action(name)(_named(start, params))
 
     def wait_for_servers(self) -> None:
-        """Wait for every action server (`server_wait` in all); a WorldError names those
-        that did not come."""
+        """Wait for every action server and the first message of every state topic
+        (`server_wait` in all); a WorldError names the servers that did not come."""
         deadline = time.monotonic() + self.settings.server_wait
         missing = []
         for name, client in sorted(self._clients.items()):
@@ -119,6 +124,11 @@ class RosRobot(Robot):
         if missing:
             raise WorldError(f"no action server {', '.join(missing)} within "
                              f"{self.settings.server_wait:g} s")
+        # The first tick reads every condition: let the state topics' first messages come
+        # (a topic still silent then reads false, and dead_ends says so).
+        topics = {c.topic for c in self.bindings.conditions.values() if c.topic is not None}
+        while not topics <= set(self._latest) and time.monotonic() < deadline:
+            time.sleep(0.01)
 
     # --- conditions ---------------------------------------------------------------------
 
@@ -195,6 +205,14 @@ class RosRobot(Robot):
         return TreeTopics(self.node, self.settings.tree_topics) if self.settings.tree_topics \
             else None
 
+    def caught_up(self, since: float) -> bool:
+        """Whether every state topic has had a message since `since` (or SETTLE seconds
+        have passed): a result can come before the topics that show its effects, and a
+        loop that read them first would take the action for undone and start it again."""
+        if time.monotonic() - since > SETTLE:
+            return True
+        return all(at > since for topic, (_, at) in self._latest.items())
+
     def dead_ends(self) -> list[str]:
         """Conditions that read false for want of news (stale topics, silent services)."""
         return sorted(self._why.values())
@@ -223,6 +241,8 @@ class GoalSkill:
         self.settings = robot.settings
         self.sent = time.monotonic()
         self.accepted_at: float | None = None
+        self.result_at: float | None = None
+        """When the result came: SUCCESS waits for the state topics to catch up."""
         self._goal = client.send_goal_async(goal)
         self._handle: Any = None
         self._result: Any = None
@@ -253,12 +273,17 @@ class GoalSkill:
                 raise WorldError(f"no result from {self.server} within "
                                  f"{self.settings.result_timeout:g} s; the goal was cancelled")
             return RUNNING
-        self._end()
         from action_msgs.msg import GoalStatus
 
         status = self._result.result().status
         if status == GoalStatus.STATUS_SUCCEEDED:
+            if self.result_at is None:
+                self.result_at = now
+            if not self.robot.caught_up(self.result_at):
+                return RUNNING  # the state topics have not said what the action did yet
+            self._end()
             return SUCCESS
+        self._end()
         names = {GoalStatus.STATUS_ABORTED: "aborted", GoalStatus.STATUS_CANCELED: "cancelled"}
         raise WorldError(f"{self.server} {names.get(status, 'ended')} the goal")
 

@@ -8,14 +8,15 @@ example2.toml's [tables.id]): /robot/move_to (place, trajectory), /robot/pick (o
 /robot/place (object, place), /robot/drop (object). Each takes its time, then changes
 the world; a cancel stops it where it is. Topics (std_msgs/String, 20 times a second):
 /robot/near (the robot's place and the objects there), /robot/holding, /world/on
-(object:place pairs), /world/blocking (object:trajectory pairs).
+(object:place pairs), /world/blocking (object:trajectory pairs). A service
+(std_srvs/srv/Trigger), /robot/hand_empty, answers whether the hand is empty.
 
 What others do, on request: `--sphere-rolls`, once the cube is picked, rolls the sphere
 onto the path to the goal; `--take-cube`, the first time the robot sets off to the
 goal with the cube, takes it out of the gripper and puts it back where it was.
 For the tests: `--abort ACTION` aborts that action's first goal, `--never-finish
 ACTION` accepts its goals and never ends them, `--silent TOPIC` never publishes TOPIC.
-Every goal, result and cancel is printed, one line each.
+Every goal, result and cancel is printed, one line each, after its time.
 """
 
 from __future__ import annotations
@@ -31,13 +32,15 @@ import rclpy
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.executors import MultiThreadedExecutor
 from std_msgs.msg import String
+from std_srvs.srv import Trigger
 from test_msgs.action import NestedMessage
 
 SECONDS = {"move_to": 0.8, "pick": 0.5, "place": 0.5, "drop": 0.3}
 
 
 def say(text: str) -> None:
-    print(text, flush=True)
+    """One line of what happened, after the wall-clock time it happened at."""
+    print(f"{time.time():.4f} {text}", flush=True)
 
 
 class World:
@@ -70,9 +73,11 @@ class FakeRobot:
         self.first: dict[str, bool] = {}
         self.taken = False
         self.rolled = False
+        self.asked = False
         self.publishers = {topic: self.node.create_publisher(String, topic, 10)
                            for topic in World().topics() if topic not in args.silent}
         self.node.create_timer(0.05, self.publish)
+        self.node.create_service(Trigger, "/robot/hand_empty", self.hand_empty)
         for server in SECONDS:
             ActionServer(self.node, NestedMessage, f"/robot/{server}",
                          execute_callback=self.executor_for(server),
@@ -83,6 +88,16 @@ class FakeRobot:
         for topic, text in self.world.topics().items():
             if topic in self.publishers:
                 self.publishers[topic].publish(String(data=text))
+
+    def hand_empty(self, request: Trigger.Request, response: Trigger.Response
+                   ) -> Trigger.Response:
+        if not self.asked:
+            self.asked = True
+            say("first call of /robot/hand_empty")
+        with self.world.lock:
+            response.success = self.world.holding == ""
+            response.message = self.world.holding
+        return response
 
     def cancelled(self, server: str):  # noqa: ANN201
         def accept(goal_handle: object) -> CancelResponse:
