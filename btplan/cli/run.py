@@ -104,8 +104,9 @@ def run(
         "--paper",
         help="Algorithm 1 exactly as published: one expansion per tick, first-match "
              "achievers, no departure, and the run ends after a few failing ticks. Without "
-             "it, the default preset (docs/robot.md): the tree grows within the tick until "
-             "it runs, a failing skill is retried, and the departures measured in "
+             "it, the default preset (docs/robot.md): the task is planned as `btplan plan` "
+             "plans it before the first action, the tree grows within the tick until it "
+             "runs, a failing skill is retried, and the departures measured in "
              "docs/reactivity.md act.")] = False,
     preset: Annotated[str | None, typer.Option(
         "--preset", metavar="NAME",

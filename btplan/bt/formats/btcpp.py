@@ -119,17 +119,34 @@ def dump_xml(tree: BehaviorTree) -> str:
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            f'<root BTCPP_format="4" main_tree_to_execute={quoteattr(tree.name)}>',
            f"  <BehaviorTree ID={quoteattr(tree.name)}>", *body, "  </BehaviorTree>",
-           "  <TreeNodesModel>"]
-    for ident in sorted(models):
-        kind, ports = models[ident]
+           *_models_xml(_leaf_models(models)), "</root>"]
+    return "\n".join(out) + "\n"
+
+
+Models = dict[str, tuple[str, tuple[tuple[str, str, str], ...]]]
+"""ID -> (kind, its ports as (direction, name, type)): what a TreeNodesModel lists."""
+
+
+def _leaf_models(models: dict[str, tuple[str, tuple[str, ...]]]) -> Models:
+    """The leaves' models: every port an input of type std::string."""
+    return {ident: (kind, tuple(("input", p, "std::string") for p in ports))
+            for ident, (kind, ports) in models.items()}
+
+
+def _models_xml(entries: Models) -> list[str]:
+    """The TreeNodesModel element's lines, in ID order."""
+    out = ["  <TreeNodesModel>"]
+    for ident in sorted(entries):
+        kind, ports = entries[ident]
         if not ports:
             out.append(f"    <{kind} ID={quoteattr(ident)}/>")
             continue
         out.append(f"    <{kind} ID={quoteattr(ident)}>")
-        out.extend(f'      <input_port name={quoteattr(p)} type="std::string"/>' for p in ports)
+        out.extend(f"      <{d}_port name={quoteattr(n)} type={quoteattr(t)}/>"
+                   for d, n, t in ports)
         out.append(f"    </{kind}>")
-    out += ["  </TreeNodesModel>", "</root>"]
-    return "\n".join(out) + "\n"
+    out.append("  </TreeNodesModel>")
+    return out
 
 
 def dump_running_xml(tree: BehaviorTree, uid: Callable[[Node], int]) -> str:
@@ -140,23 +157,13 @@ def dump_running_xml(tree: BehaviorTree, uid: Callable[[Node], int]) -> str:
     models: dict[str, tuple[str, tuple[str, ...]]] = {}
     body: list[str] = []
     _write(tree.root, 2, body, models, uid)
-    entries = {ident: (spec.kind, tuple((p.direction, p.name, p.type) for p in spec.ports))
-               for ident, spec in BUILTINS.items()}
-    entries.update({ident: (kind, tuple(("input", p, "std::string") for p in ports))
-                    for ident, (kind, ports) in models.items()})
+    entries: Models = {ident: (spec.kind, tuple((p.direction, p.name, p.type)
+                                                for p in spec.ports))
+                       for ident, spec in BUILTINS.items()}
+    entries.update(_leaf_models(models))
     out = ['<root BTCPP_format="4">',
            f'  <BehaviorTree ID={quoteattr(tree.name or "MainTree")} _fullpath="">', *body,
-           "  </BehaviorTree>", "  <TreeNodesModel>"]
-    for ident in sorted(entries):
-        kind, ports = entries[ident]
-        if not ports:
-            out.append(f"    <{kind} ID={quoteattr(ident)}/>")
-            continue
-        out.append(f"    <{kind} ID={quoteattr(ident)}>")
-        out.extend(f"      <{d}_port name={quoteattr(n)} type={quoteattr(t)}/>"
-                   for d, n, t in ports)
-        out.append(f"    </{kind}>")
-    out += ["  </TreeNodesModel>", "</root>"]
+           "  </BehaviorTree>", *_models_xml(entries), "</root>"]
     return "\n".join(out)
 
 
