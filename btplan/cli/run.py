@@ -40,7 +40,7 @@ class Sim(str, Enum):
 
 EXAMPLES = """Examples:
 
-  btplan run domains/pick_place.bt --disturb undo:Pick@11 --rate 4
+  btplan run domains/pick_place.bt --disturb undo:Pick@5 --rate 4
   btplan run domains/pick_place_obstacle.bt --scenario examples/example2.dist
   btplan run domains/pick_place_obstacle.bt --scenario examples/example2.dist --paper
   btplan run domains/pick_place.bt --world examples/my_robot.py:FetchRobot --hz 10
