@@ -27,7 +27,7 @@ def test_the_site_builds_strictly(tmp_path: Path) -> None:
                            timeout=600)
     assert built.returncode == 0, built.stderr
     commands = (tmp_path / "site" / "reference" / "commands" / "index.html").read_text()
-    for command in ("check", "plan", "run", "export", "generate", "sweep", "view"):
+    for command in ("check", "plan", "run", "export", "generate-blocksworld", "sweep", "view"):
         assert f'id="btplan-{command}"' in commands  # generated from the app itself
     assert "--ros" in commands and "--groot" in commands
 
