@@ -31,12 +31,14 @@ def with_default_ports(argv: Sequence[str]) -> list[str]:
 
 
 def check_port(flag: str, port: int | None) -> None:
+    """A server's port is bad input unless it and the next one are ports."""
     if port is not None and not 1 <= port <= 65534:
         raise InputError(f"{flag} {port}: a port is a number from 1 to 65534 (the next one "
                          "is used too)", Span(flag, 1, 1))
 
 
 def check_btlog(path: str | None) -> None:
+    """A replay file's name must end in .btlog (Groot2 opens them by the suffix)."""
     if path is not None and not path.endswith(".btlog"):
         raise InputError(f"--btlog {path}: the file name must end in .btlog",
                          Span("--btlog", 1, 1), "Groot2 opens replay files by that suffix")

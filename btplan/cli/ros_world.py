@@ -12,6 +12,7 @@ __all__ = ["check_ros_bindings", "open_ros_robot"]
 
 
 def read_bindings(path: str, domain: Domain) -> Any:
+    """The binding file at `path`, read and checked against `domain`."""
     from btplan.ros.bindings import load_bindings
 
     return load_bindings(path, read_text(path), domain)

@@ -68,6 +68,7 @@ class TraceLines:
         self.done = lines is not None
 
     def append(self, line: str) -> None:
+        """A run's new tick; past `keep`, the oldest is folded into the base line."""
         with self.lock:
             if self._lines.maxlen is not None and len(self._lines) == self._lines.maxlen:
                 self._fold(json.loads(self._lines[0]))
@@ -128,6 +129,7 @@ class BrowserView:
 
     @property
     def url(self) -> str:
+        """Where the page is (the port is the one given, or the free one picked for 0)."""
         return f"http://{self.host}:{self.port}/"
 
     # --- as a run's monitor ---------------------------------------------------------------
@@ -163,6 +165,8 @@ class BrowserView:
         self._server.server_close()
 
     def info(self) -> dict[str, Any]:
+        """What the page asks first and while it follows a run: the title, whether the
+        run is live and done, how many lines there are, whether pictures come too."""
         _, total = self.lines.since(1 << 62)
         self._told_done = self.lines.done and self.served >= total
         return {"title": self.title, "live": self.live, "done": self.lines.done,

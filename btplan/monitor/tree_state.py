@@ -204,4 +204,5 @@ class TreeState:
         return bytes(self._buffer)
 
     def code(self, uid: int) -> int:
+        """The node's status code after the last tick (0 for a node never reached)."""
         return self._codes.get(uid, 0)

@@ -56,6 +56,8 @@ class _Strict(BaseModel):
 
 
 class RosSettings(_Strict):
+    """The file's [ros] table: the node's name, the waits and timeouts, the tree topics."""
+
     node: str = "btplan"
     server_wait: float = Field(default=5.0, gt=0)
     accept_timeout: float = Field(default=2.0, gt=0)
@@ -65,12 +67,18 @@ class RosSettings(_Strict):
 
 
 class ActionBinding(_Strict):
+    """One [actions.NAME] table: the action type, its server, and each goal field's
+    expression."""
+
     type: str
     server: str
     goal: dict[str, str] = {}
 
 
 class ConditionBinding(_Strict):
+    """One [conditions.NAME] table: a topic (or a service), its type, the test `when`,
+    and how old a message may be."""
+
     topic: str | None = None
     service: str | None = None
     type: str
@@ -82,6 +90,8 @@ class ConditionBinding(_Strict):
 
 
 class Bindings(_Strict):
+    """A whole binding file, checked, with each expression compiled (`load_bindings`)."""
+
     ros: RosSettings = Field(default_factory=RosSettings)
     tables: dict[str, dict[str, str | int | float | bool]] = {}
     actions: dict[str, ActionBinding] = {}
