@@ -108,9 +108,11 @@ class RosRobot(Robot):
                 _set(goal, field, _as_field(expression(names), fields[field]))
             skill = GoalSkill(self, f"{name}({', '.join(args)})", action.server, client, goal)
             self.active.add(skill)
+            self.goals_sent += 1
             return skill
 
-        self.action(name)(_named(start, params))
+        start.__signature__ = _signature(params)  # type: ignore[attr-defined]
+        self.action(name)(start)
 
     def wait_for_servers(self) -> None:
         """Wait for every action server and the first message of every state topic
@@ -152,7 +154,8 @@ class RosRobot(Robot):
             def read(*args: str) -> bool:
                 return self._call_service(name, condition, service, params, args)
 
-        self.condition(name)(_named(read, params))
+        read.__signature__ = _signature(params)  # type: ignore[attr-defined]
+        self.condition(name)(read)
 
     def _subscribe(self, topic: str, kind: Any) -> None:
         def keep(message: Any) -> None:
@@ -205,6 +208,10 @@ class RosRobot(Robot):
         return TreeTopics(self.node, self.settings.tree_topics) if self.settings.tree_topics \
             else None
 
+    def finished(self, skill: GoalSkill) -> None:
+        """A goal ended (or was cancelled): it is no longer cancelled when the robot closes."""
+        self.active.discard(skill)
+
     def caught_up(self, since: float) -> bool:
         """Whether every state topic has had a message since `since` (or SETTLE seconds
         have passed): a result can come before the topics that show its effects, and a
@@ -249,7 +256,6 @@ class GoalSkill:
         self._cancel: Any = None
         self._cancelled_at: float | None = None
         self.ended = False
-        robot.goals_sent += 1
 
     def poll(self) -> Status:
         now = time.monotonic()
@@ -316,16 +322,16 @@ class GoalSkill:
 
     def _end(self) -> None:
         self.ended = True
-        self.robot.active.discard(self)
+        self.robot.finished(self)
 
 
-def _named(function: Callable[..., Any], params: list[str]) -> Callable[..., Any]:
-    """`function` with a signature of the parameters' names (Robot checks the arity)."""
+def _signature(params: list[str]) -> Any:
+    """A signature of the parameters' names, for a function that takes them as *args
+    (Robot checks a binding's arity against the domain)."""
     import inspect
 
-    function.__signature__ = inspect.Signature(  # type: ignore[attr-defined]
+    return inspect.Signature(
         [inspect.Parameter(p, inspect.Parameter.POSITIONAL_OR_KEYWORD) for p in params])
-    return function
 
 
 def _set(message: Any, path: str, value: Any) -> None:
