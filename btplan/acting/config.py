@@ -79,6 +79,11 @@ class ActingConfig:
       plan` does (its shorter plan first) and act on that tree, growing it online where
       the world departs from it: an undisturbed run executes that plan and no more
       (btplan.acting.offline_turns); not in worlds that refine values as they run.
+    - `wait_for_alternatives`: an action that failed is not started again while the
+      alternative the tree turned to (an action started after the failure) still runs;
+      its leaf fails at once instead (btplan.acting.skills). On a robot a failure takes
+      ticks, and a reactive Fallback would restart the failed action and halt the
+      alternative at every tick.
     - `stop_on_skill_error`: an exception inside a skill ends the run (SkillError)
       instead of counting as that action's FAILURE.
     - `halt_wait`: seconds to wait, on every way out of a run, for halted skills that
@@ -96,6 +101,7 @@ class ActingConfig:
     retry_failed_actions: bool = True
     plan_offline_when_stuck: bool = True
     plan_before_acting: bool = True
+    wait_for_alternatives: bool = True
     stop_on_skill_error: bool = False
     halt_wait: float = 2.0
 
@@ -107,7 +113,7 @@ class ActingConfig:
                            expand_when_forced=False, skip_moved_while_held=False,
                            credit_other_goals=False, finish_halted_action=False,
                            retry_failed_actions=False, plan_offline_when_stuck=False,
-                           plan_before_acting=False),
+                           plan_before_acting=False, wait_for_alternatives=False),
                        **changes)
 
     @classmethod
@@ -125,7 +131,7 @@ class ActingConfig:
     def simulator(cls, **changes: Any) -> ActingConfig:
         """The default for worlds that refine values as they run (PyBullet)."""
         return replace(cls(name="simulator", expand_later_preconditions=False,
-                           credit_other_goals=False), **changes)
+                           credit_other_goals=False, wait_for_alternatives=False), **changes)
 
     @classmethod
     def preset(cls, name: str) -> ActingConfig:

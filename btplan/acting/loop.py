@@ -155,7 +155,8 @@ class BlendedLoop:
     def _skills_for(self, world: World) -> Skills:
         refiner = None if capabilities_of(world).refines else \
             ConstraintRefiner(self.task, lambda: self.skills.facts())
-        return Skills(world, self.grounding, self.config.stop_on_skill_error, refiner)
+        return Skills(world, self.grounding, self.config.stop_on_skill_error, refiner,
+                      self.config.wait_for_alternatives)
 
     def use_world(self, world: World) -> None:
         """Keep the tree and continue against another world (a fresh run from the start)."""

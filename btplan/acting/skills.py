@@ -57,7 +57,8 @@ class Skills:
     def __init__(self, world: World, grounding: Mapping[LeafKey, GroundAction],
                  stop_on_error: bool = False,
                  fallback_refine: Callable[[ActionTemplate, Mapping[str, str], Parameter],
-                                           list[str]] | None = None) -> None:
+                                           list[str]] | None = None,
+                 wait_for_alternatives: bool = False) -> None:
         self.world = world
         self.capabilities: Capabilities = capabilities_of(world)
         self.grounding = grounding
@@ -73,6 +74,12 @@ class Skills:
         """Running skills some of whose effects another action made while they ran: their
         effects holding says nothing about them."""
         self._ticked: dict[LeafKey, Status] = {}
+        self.wait_for_alternatives = wait_for_alternatives
+        self._starts = 0
+        self._start_number: dict[LeafKey, int] = {}
+        """The running skills' places in the order of starts."""
+        self._failed_after: dict[LeafKey, int] = {}
+        """Actions whose last run failed, and how many starts there had been then."""
         self._raw: object = None
         self._facts: frozenset[Atom] = frozenset()
         refine = getattr(world, "refine", None) if self.capabilities.refines else None
@@ -165,6 +172,11 @@ class Skills:
     # ---------------------------------------------------------------------------------
 
     def _begin(self, key: LeafKey) -> Status:
+        if self._alternative_running(key):
+            self._ticked[key] = FAILURE  # as it failed: the tree goes on to the alternative
+            return FAILURE
+        self._starts += 1
+        self._start_number[key] = self._starts
         action = self.running[key] = self._action(key)
         self.events.started.append(action)
         if self._effects_hold(action):  # nothing left for it to show
@@ -182,7 +194,12 @@ class Skills:
             return status
         action = self.running.pop(key, None) or self._action(key)
         self._made_by_others.discard(key)
+        self._start_number.pop(key, None)
         self.ended += 1
+        if status is FAILURE:
+            self._failed_after[key] = self._starts
+        else:
+            self._failed_after.pop(key, None)
         if status is SUCCESS:
             self.events.finished.append(action)
             self.executed.append(action)
@@ -191,7 +208,20 @@ class Skills:
             self.events.failed.append(action)
         return status
 
+    def _alternative_running(self, key: LeafKey) -> bool:
+        """Whether `key` failed and an action started since, the alternative the tree
+        turned to, still runs (`wait_for_alternatives`). On a robot a failure takes
+        ticks to come; a reactive Fallback would start the failed action again at the
+        next tick and halt its alternative every time: it is not started again, its
+        leaf fails at once, until that alternative has ended."""
+        failed = self._failed_after.get(key)
+        if not self.wait_for_alternatives or failed is None:
+            return False
+        return any(number > failed for other, number in self._start_number.items()
+                   if other != key)
+
     def _halt(self, key: LeafKey) -> None:
+        self._start_number.pop(key, None)
         action = self.running.pop(key)
         try:
             observed = key not in self._made_by_others and self._effects_hold(action)

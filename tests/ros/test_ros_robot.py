@@ -265,3 +265,29 @@ def test_ctrl_c_cancels_the_running_goal_before_btplan_exits(
     assert run.returncode == 130, err
     assert "cancel pick" in log and "cancelled pick" in log
     assert "Pick(cube)" in err  # the summary names the action halted on the way out
+
+
+def test_an_aborted_goal_hands_over_to_the_next_alternative(
+        env: dict[str, str], tmp_path: Path) -> None:
+    """domains/run_alternatives.bt: the road is closed, every Drive goal is aborted after a
+    while; the tree's other way, Fly, runs and is not halted for Drive again."""
+    here = Path(__file__).parent
+    robot = subprocess.Popen([sys.executable, str(here / "parcel_robot.py")], env=env,
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        assert robot.stdout is not None and "ready" in robot.stdout.readline()
+        trace = tmp_path / "run.jsonl"
+        done = subprocess.run([sys.executable, "-m", "btplan", "run",
+                               str(ROOT / "domains" / "run_alternatives.bt"), "--ros",
+                               str(here / "parcel.toml"), "--hz", "50", "-q", "--trace",
+                               str(trace)], env=env, capture_output=True, text=True,
+                              timeout=300)
+    finally:
+        robot.terminate()
+        log, _ = robot.communicate(timeout=20)
+    assert done.returncode == 0, done.stderr
+    lines = [json.loads(line) for line in trace.read_text().splitlines()]
+    errors = [e for line in lines for e in line.get("errors", [])]
+    assert {e["message"] for e in errors} == {"/parcel/drive aborted the goal"}
+    assert executed(lines) == ["Load(box)", "Fly(box)"]
+    assert "cancelled fly" not in log and [a for line in lines for a in line["halted"]] == []
