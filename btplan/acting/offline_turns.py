@@ -13,7 +13,8 @@ actions symbolically.
 The same planning before the first tick (`ActingConfig.plan_before_acting`) gives the
 loop the tree `btplan plan` finds, its shorter plan first, so that an undisturbed run
 executes that plan and no more; the loop grows that tree online where the world departs
-from it. Planning that fails or is stopped leaves the loop to grow its own tree.
+from it. Planning that fails leaves the loop to grow its own tree; a stop request while
+it plans ends the run before any action.
 """
 
 from __future__ import annotations
@@ -27,8 +28,8 @@ from btplan.acting.pacing import Stop
 from btplan.acting.state import TickReport
 from btplan.bt import FAILURE
 from btplan.errors import BtplanError, Interrupted, PlanningError
-from btplan.planner import PlannerOptions
 from btplan.model import Atom, Literal, Task
+from btplan.planner import PlannerOptions
 from btplan.records import replace
 from btplan.robot.contract import capabilities_of
 
