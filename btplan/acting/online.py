@@ -65,6 +65,7 @@ class RunOutcome:
 
     @property
     def ticks(self) -> int:
+        """Ticks the run made."""
         return self.totals.ticks
 
     @property
@@ -73,6 +74,7 @@ class RunOutcome:
         return self.totals.unstopped
 
     def summary(self) -> RunSummary:
+        """The totals over every tick (what `btplan run` prints)."""
         return self.totals
 
     def plan_text(self) -> str:

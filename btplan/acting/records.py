@@ -27,6 +27,7 @@ class ExpansionNote:
     moves: int
 
     def to_dict(self) -> dict[str, Any]:
+        """The expansion as the trace writes it."""
         return {"condition": self.condition, "achievers": list(self.achievers),
                 "conflicts_resolved": self.conflicts_resolved, "moves": self.moves}
 
@@ -68,6 +69,7 @@ class TickRecord:
     """The finished actions in the IPC plan format (for `--plan-out`; not in the trace)."""
 
     def to_dict(self) -> dict[str, Any]:
+        """The tick as the trace writes it (docs/cli.md, "The trace")."""
         out = {
             "tick": self.tick,
             "status": self.status,
@@ -92,6 +94,7 @@ class TickRecord:
         return out
 
     def to_json(self) -> str:
+        """The tick as one line of JSON."""
         return json.dumps(self.to_dict(), separators=(",", ":"), ensure_ascii=False)
 
 
@@ -137,6 +140,7 @@ class RunSummary:
 
     @property
     def conflicts_resolved(self) -> int:
+        """Conflicts resolved over every expansion of the run."""
         return sum(e.conflicts_resolved for _, e in self.expansions)
 
     def end(self, unstopped: list[str], overruns: int, worst_lateness: float) -> None:

@@ -135,6 +135,7 @@ class BrowserView:
     # --- as a run's monitor ---------------------------------------------------------------
 
     def publish(self, state: TreeState, update: TickUpdate) -> None:
+        """Keep the tick's trace line (and the camera's picture, at most every FRAME_GAP)."""
         self.lines.append(update.line)
         now = time.monotonic()
         if self.camera is not None and now - self._pictured >= FRAME_GAP:

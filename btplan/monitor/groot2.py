@@ -109,6 +109,7 @@ class Groot2Server:
         return time.monotonic() - self._last_request < HEARTBEAT
 
     def close(self) -> None:
+        """Stop serving and free both ports."""
         self._running = False
         self._thread.join(timeout=2.0)
         self._context.destroy(linger=0)

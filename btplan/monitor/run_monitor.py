@@ -57,9 +57,11 @@ class TickUpdate:
 class Monitor(Protocol):
     """What watches a run: takes each tick's update, and ends with the run."""
 
-    def publish(self, state: TreeState, update: TickUpdate) -> None: ...
+    def publish(self, state: TreeState, update: TickUpdate) -> None:
+        """Take in one tick (called in the run's thread, after the tick)."""
 
-    def close(self) -> None: ...
+    def close(self) -> None:
+        """The run ended, however it ended: finish what is written, free what is held."""
 
 
 class RunMonitor:

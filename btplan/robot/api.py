@@ -207,6 +207,8 @@ class Robot:
     # --- the world contract ------------------------------------------------------------
 
     def check(self, key: LeafKey) -> bool:
+        """Whether a grounded condition holds: its bound function, the problem for a
+        predicate no action changes, any grounding for a wildcard (`_`)."""
         name, args = key
         function = self._conditions.get(name)
         if function is None:
@@ -238,6 +240,7 @@ class Robot:
         return frozenset(found)
 
     def start(self, key: LeafKey) -> Status:
+        """Start the bound skill of a grounded action and poll it once."""
         name, args = key
         bound = self._actions.get(name)
         if bound is None:
@@ -257,12 +260,14 @@ class Robot:
         return self._poll(key, running)
 
     def step(self, key: LeafKey) -> Status:
+        """Poll the running skill of a grounded action (never blocks)."""
         running = self._running.get(key)
         if running is None:
             raise WorldError(f"{key[0]} was stepped without being started")
         return self._poll(key, running)
 
     def halt(self, key: LeafKey) -> None:
+        """Cancel the running skill; `stopped` answers once it has come to rest."""
         with self._lock:
             running = self._running.pop(key, None)
         if running is None:
@@ -282,6 +287,8 @@ class Robot:
 
     def refine(self, template: ActionTemplate, binding: Mapping[str, str],
                parameter: Parameter) -> list[str]:
+        """The values of a refined parameter: the robot's refiner when one is bound,
+        else the objects its `where` constraints hold for."""
         function = self._refiners.get((template.name, parameter.name))
         if function is None:
             if self._fallback is None:

@@ -37,7 +37,8 @@ class Skill(Protocol):
     message in the trace. `cancel()` asks it to stop; `stopped()` says whether it has
     (both optional: a skill without them stops at once)."""
 
-    def poll(self) -> Status | bool | None: ...
+    def poll(self) -> Status | bool | None:
+        """RUNNING (or None) while it runs, then SUCCESS or FAILURE (or a bool)."""
 
 
 def as_status(answer: object, what: str) -> Status:
@@ -61,6 +62,7 @@ class Running:
         self.cancelled = False
 
     def poll(self) -> Status:
+        """The skill's status now, whatever kind it is (a cancelled one has failed)."""
         skill = self.skill
         if isinstance(skill, Future):
             if not skill.done():
@@ -80,6 +82,7 @@ class Running:
         return as_status(poll(), self.what)
 
     def cancel(self) -> None:
+        """Ask the skill to stop: its `cancel()`, a future's cancel, a thread's event."""
         self.cancelled = True
         if self.stop is not None:
             self.stop.set()
@@ -92,6 +95,7 @@ class Running:
             cancel()
 
     def stopped(self) -> bool:
+        """Whether a cancelled skill has come to rest (at once for one that cannot say)."""
         skill = self.skill
         if isinstance(skill, Future):
             return skill.done()
@@ -106,11 +110,13 @@ class Threads:
         self._pool: ThreadPoolExecutor | None = None
 
     def submit(self, function: object, *args: object, stop: threading.Event) -> Future[object]:
+        """Run a threaded action's function in a worker, with the event a halt sets."""
         if self._pool is None:
             self._pool = ThreadPoolExecutor(max_workers=8, thread_name_prefix="btplan-skill")
         return self._pool.submit(function, *args, stop=stop)  # type: ignore[arg-type]
 
     def shutdown(self) -> None:
+        """Let the workers go; skills still running are cancelled."""
         if self._pool is not None:
             self._pool.shutdown(wait=False, cancel_futures=True)
             self._pool = None

@@ -258,6 +258,8 @@ class GoalSkill:
         self.ended = False
 
     def poll(self) -> Status:
+        """The goal's status now (see the module docstring); a failure raises WorldError
+        with its reason, which the loop records as that action's FAILURE."""
         now = time.monotonic()
         if self._handle is None:
             if not self._goal.done():

@@ -35,6 +35,7 @@ class TreeTopics:
         self._version = -1
 
     def publish(self, state: TreeState, update: TickUpdate) -> None:
+        """The tree when it changed, and the tick's statuses."""
         if state.versions != self._version:
             self._version = state.versions
             self.tree.publish(self._string(data=state.xml))
@@ -44,4 +45,4 @@ class TreeTopics:
             "grew": [e.condition for e in record.expansions]})))
 
     def close(self) -> None:
-        pass
+        """Nothing to finish: the publishers go with the robot's node."""

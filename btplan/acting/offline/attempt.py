@@ -27,6 +27,9 @@ if TYPE_CHECKING:
 
 @record
 class PlanStats:
+    """What planning cost and made: expansions, conflicts and moves, the tree, the plan,
+    the rounds and the time."""
+
     expansions: int
     conflicts_resolved: int
     moves: int
