@@ -54,6 +54,7 @@ class Departure:
         """The world changed since the tick that left it in `last`."""
 
     def world_for_tick(self, world: World) -> World:
+        """The world the tree ticks against this tick (by default `world` itself)."""
         return world
 
     def end_tick(self) -> None:
@@ -61,6 +62,8 @@ class Departure:
 
     def rank_achievers(self, achievers: list[GroundAction], literal: GroundLiteral,
                        state: frozenset[Atom]) -> list[GroundAction]:
+        """The achievers of `literal`, reordered before the width is cut (by default
+        as they came)."""
         return achievers
 
     def before_expansion(self, node: Node, state: frozenset[Atom]) -> None:
@@ -77,15 +80,21 @@ class Departure:
         """An expansion was made in this tick."""
 
     def expand_again(self, state: frozenset[Atom]) -> Expansion | None:
+        """Nothing new to expand: an expansion this departure makes instead, or None."""
         return None
 
     def when_stuck(self, node: Node) -> Expansion | None:
+        """`node` has no achiever or no conflict-free place: an expansion this departure
+        makes another way, or None."""
         return None
 
     def optional(self, node: Node) -> bool:
+        """Whether `node` is a condition this departure added, which may be dropped."""
         return False
 
     def gives_up(self, node: Node) -> bool:
+        """Whether this departure drops the stuck condition `node` instead of the run
+        counting it as stuck."""
         return False
 
     def new_world(self, world: World) -> None:
@@ -107,46 +116,56 @@ class Hooks:
                                  "optional", "gives_up", "new_world")}
 
     def attach(self, loop: LoopState) -> None:
+        """Give every departure the loop, once."""
         for departure in self.departures:
             departure.attach(loop)
 
     def before_tick(self, report: TickReport, last: frozenset[Atom]) -> None:
+        """Each departure that watches for outside changes, in order."""
         for d in self._at["before_tick"]:
             d.before_tick(report, last)
 
     def world_for_tick(self, world: World) -> World:
+        """The world wrapped by each departure in turn."""
         for d in self._at["world_for_tick"]:
             world = d.world_for_tick(world)
         return world
 
     def end_tick(self) -> None:
+        """Tell each departure the tick is over."""
         for d in self._at["end_tick"]:
             d.end_tick()
 
     def rank_achievers(self, achievers: list[GroundAction], literal: GroundLiteral,
                        state: frozenset[Atom]) -> list[GroundAction]:
+        """The achievers as each departure reorders them, in turn."""
         for d in self._at["rank_achievers"]:
             achievers = d.rank_achievers(achievers, literal, state)
         return achievers
 
     def before_expansion(self, node: Node, state: frozenset[Atom]) -> None:
+        """Tell each departure which condition is about to be expanded."""
         for d in self._at["before_expansion"]:
             d.before_expansion(node, state)
 
     def new_subtree(self, subtree: Fallback, achievers: list[GroundAction],
                     literal: GroundLiteral, state: frozenset[Atom]) -> None:
+        """Tell each departure of the subtree ExpandTree made."""
         for d in self._at["new_subtree"]:
             d.new_subtree(subtree, achievers, literal, state)
 
     def placed(self, subtree: Fallback, moves: int) -> None:
+        """Tell each departure where IncreasePriority put the subtree."""
         for d in self._at["placed"]:
             d.placed(subtree, moves)
 
     def after_expansion(self, report: TickReport) -> None:
+        """Tell each departure an expansion was made in this tick."""
         for d in self._at["after_expansion"]:
             d.after_expansion(report)
 
     def expand_again(self, state: frozenset[Atom]) -> Expansion | None:
+        """The first expansion a departure makes when nothing new was expanded."""
         for d in self._at["expand_again"]:
             found = d.expand_again(state)
             if found is not None:
@@ -154,6 +173,7 @@ class Hooks:
         return None
 
     def when_stuck(self, node: Node) -> Expansion | None:
+        """The first expansion a departure makes for a stuck condition."""
         for d in self._at["when_stuck"]:
             found = d.when_stuck(node)
             if found is not None:
@@ -161,11 +181,14 @@ class Hooks:
         return None
 
     def optional(self, node: Node) -> bool:
+        """Whether any departure added this condition as one that may be dropped."""
         return any(d.optional(node) for d in self._at["optional"])
 
     def gives_up(self, node: Node) -> bool:
+        """Whether any departure drops this stuck condition."""
         return any(d.gives_up(node) for d in self._at["gives_up"])
 
     def new_world(self, world: World) -> None:
+        """Tell each departure the loop goes on against another world."""
         for d in self._at["new_world"]:
             d.new_world(world)

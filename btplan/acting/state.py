@@ -39,6 +39,9 @@ class Expansion:
 
 @record
 class TickReport:
+    """What one tick of the loop did: its status, the expansions made in it, and the
+    planning and monitoring it cost."""
+
     tick: int
     status: Status
     expansions: list[Expansion] = field(default_factory=list)
@@ -53,6 +56,7 @@ class TickReport:
         self.expansions.append(expansion)
 
     def add_planning(self, seconds: float) -> None:
+        """CPU seconds spent growing the tree in this tick."""
         self.planning_seconds += seconds
 
     def follows(self, earlier: TickReport) -> None:
@@ -80,6 +84,9 @@ class LoopMemory:
 
 @record
 class RunResult:
+    """How `BlendedLoop.run` ended: reached or not, after how many ticks and expansions,
+    the tree, and why."""
+
     reached: bool
     ticks: int
     expansions: list[Expansion]
@@ -93,7 +100,9 @@ class LoopState(Protocol):
     They read these fields and change the loop only through its methods."""
 
     @property
-    def task(self) -> Task: ...
+    def task(self) -> Task:
+        """The task the loop plans for."""
+        ...
 
     @property
     def world(self) -> PlanningWorld:
@@ -101,19 +110,29 @@ class LoopState(Protocol):
         ...
 
     @property
-    def options(self) -> PlannerOptions: ...
+    def options(self) -> PlannerOptions:
+        """How conditions are expanded (achiever ranking, conflicts, budgets)."""
+        ...
 
     @property
-    def index(self) -> AchieverIndex: ...
+    def index(self) -> AchieverIndex:
+        """The task's achievers, relaxed model and mutexes, built once."""
+        ...
 
     @property
-    def tree(self) -> BehaviorTree: ...
+    def tree(self) -> BehaviorTree:
+        """The tree as it has grown; departures read it, the loop's methods change it."""
+        ...
 
     @property
-    def grounding(self) -> Mapping[LeafKey, GroundAction]: ...
+    def grounding(self) -> Mapping[LeafKey, GroundAction]:
+        """The grounded action each action leaf stands for, by its key."""
+        ...
 
     @property
-    def expansions(self) -> Sequence[Expansion]: ...
+    def expansions(self) -> Sequence[Expansion]:
+        """Every expansion made so far, in order."""
+        ...
 
     @property
     def expanded(self) -> Collection[Node]:
@@ -126,7 +145,9 @@ class LoopState(Protocol):
         ...
 
     @property
-    def banned(self) -> frozenset[Choice]: ...
+    def banned(self) -> frozenset[Choice]:
+        """(condition, action) choices never to use (btplan.planner.backjump)."""
+        ...
 
     @property
     def early(self) -> EarlyQueue:
@@ -134,37 +155,69 @@ class LoopState(Protocol):
         ...
 
     @property
-    def deadline(self) -> float | None: ...
+    def deadline(self) -> float | None:
+        """A time.perf_counter() value the last-resort search must not run past."""
+        ...
 
     def record(self, literal: GroundLiteral, achievers: list[GroundAction], conflicts: int,
-               moves: int) -> Expansion: ...
+               moves: int) -> Expansion:
+        """Count an expansion of `literal` made by `achievers` (for a departure that grew
+        the tree its own way)."""
+        ...
 
     def apply(self, node: Node, literal: GroundLiteral, achievers: list[GroundAction],
-              spare: list[GroundAction] | None = None) -> Expansion: ...
+              spare: list[GroundAction] | None = None) -> Expansion:
+        """ExpandTree (Algorithm 2) of `node` with `achievers`, then IncreasePriority
+        while it conflicts; `spare`: achievers to try when those conflict everywhere."""
+        ...
 
     def achievers(self, node: Node, literal: GroundLiteral,
-                  state: frozenset[Atom]) -> tuple[list[GroundAction], list[GroundAction]]: ...
+                  state: frozenset[Atom]) -> tuple[list[GroundAction], list[GroundAction]]:
+        """The ranked achievers of `node`'s condition in `state`, and the spare ones."""
+        ...
 
     def expand_now(self, report: TickReport, node: Node, state: frozenset[Atom],
                    found: tuple[list[GroundAction], list[GroundAction]] | None = None
-                   ) -> bool: ...
+                   ) -> bool:
+        """Expand `node` before a tick reaches it, as that tick would; False when it is
+        left for later (`found`: its achievers, if known)."""
+        ...
 
-    def judge(self) -> Judge: ...
+    def judge(self) -> Judge:
+        """What conflict checks know now (the grounding, the guards, the mutexes)."""
+        ...
 
-    def never_expand(self, nodes: list[Node]) -> None: ...
+    def never_expand(self, nodes: list[Node]) -> None:
+        """Conditions to check and never achieve (guards of an alternative)."""
+        ...
 
-    def ground(self, actions: Iterable[GroundAction]) -> None: ...
+    def ground(self, actions: Iterable[GroundAction]) -> None:
+        """The grounded actions the tree's new leaves stand for."""
+        ...
 
-    def adopt(self, steps: list[GroundAction], checks: list[Node]) -> None: ...
+    def adopt(self, steps: list[GroundAction], checks: list[Node]) -> None:
+        """A plan found by search was put into the tree: ground its steps, never expand
+        the checks it brings."""
+        ...
 
 
 class EarlyQueue(Protocol):
     """The early expansions' queue, as departures add to it."""
 
-    def replace(self, nodes: list[Node]) -> None: ...
+    def replace(self, nodes: list[Node]) -> None:
+        """These, instead of what waited (a new expansion's later preconditions)."""
+        ...
 
-    def extend(self, nodes: list[Node]) -> None: ...
+    def extend(self, nodes: list[Node]) -> None:
+        """These too, after what waits."""
+        ...
 
-    def expand_broken(self, report: TickReport, last: frozenset[Atom]) -> None: ...
+    def expand_broken(self, report: TickReport, last: frozenset[Atom]) -> None:
+        """Expand the conditions ahead of the running actions that held in `last` and an
+        outside change made false."""
+        ...
 
-    def expand_if_forced(self, report: TickReport, nodes: list[Node]) -> None: ...
+    def expand_if_forced(self, report: TickReport, nodes: list[Node]) -> None:
+        """Of the later false preconditions `nodes`, expand those the robot could not
+        reach later without giving up what it holds."""
+        ...
