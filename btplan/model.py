@@ -85,11 +85,14 @@ class Parameter(Frozen):
 
 
 class Predicate(Frozen):
+    """A predicate of the domain: its name and typed parameters."""
+
     name: str
     parameters: tuple[Parameter, ...] = ()
 
     @property
     def arity(self) -> int:
+        """How many arguments the predicate takes."""
         return len(self.parameters)
 
 
@@ -129,14 +132,18 @@ class ActionTemplate(Frozen):
 
     @property
     def add_effects(self) -> tuple[Literal, ...]:
+        """The effects that make something true."""
         return tuple(e for e in self.effects if e.positive)
 
     @property
     def delete_effects(self) -> tuple[Literal, ...]:
+        """The effects that make something false (`not near(_)` included)."""
         return tuple(e for e in self.effects if not e.positive)
 
 
 class Domain(Frozen):
+    """A planning domain: types, constants, predicates, action templates, cost functions."""
+
     name: str
     requirements: tuple[str, ...] = ()
     types: tuple[TypeDef, ...] = (TypeDef(name=ROOT_TYPE, parent=None),)
@@ -154,10 +161,12 @@ class Domain(Frozen):
 
     @cached_property
     def type_parents(self) -> Mapping[str, str | None]:
+        """Each type's parent (None for the root)."""
         return {t.name: t.parent for t in self.types}
 
     @cached_property
     def predicate_map(self) -> Mapping[str, Predicate]:
+        """The predicates by name."""
         return {p.name: p for p in self.predicates}
 
     @cached_property
@@ -167,6 +176,7 @@ class Domain(Frozen):
 
     @cached_property
     def action_map(self) -> Mapping[str, ActionTemplate]:
+        """The action templates by name."""
         return {a.name: a for a in self.actions}
 
     def ancestors(self, type_name: str) -> tuple[str, ...]:
@@ -179,6 +189,7 @@ class Domain(Frozen):
         return tuple(chain)
 
     def is_subtype(self, type_name: str, of: str) -> bool:
+        """Whether `type_name` is `of` or one of its descendants."""
         return of in self.ancestors(type_name)
 
     @cached_property
@@ -227,10 +238,12 @@ class Task(Frozen):
 
     @cached_property
     def initial_state(self) -> frozenset[Atom]:
+        """The problem's initial facts as atoms."""
         return frozenset(Atom(lit.predicate, lit.args) for lit in self.problem.init)
 
     @cached_property
     def goal_literals(self) -> tuple[GroundLiteral, ...]:
+        """The goal's conditions, grounded (negated ones included)."""
         return tuple(GroundLiteral(Atom(g.predicate, g.args), g.positive) for g in self.problem.goal)
 
     @cached_property
@@ -279,6 +292,7 @@ class GroundAction(Frozen):
         return tuple([p.atom for p in self.preconditions if p.positive])
 
     def applicable(self, state: frozenset[Atom] | set[Atom]) -> bool:
+        """Whether every precondition holds in `state`."""
         return all(p.holds(state) for p in self.preconditions)
 
     def achieved(self, state: frozenset[Atom] | set[Atom]) -> bool:

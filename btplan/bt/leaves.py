@@ -18,6 +18,9 @@ def leaf_label(ident: str, args: tuple[str, ...]) -> str:
 
 
 class Leaf(Node):
+    """A condition or an action: one ID (a predicate, an action template) and the
+    grounded arguments, named by ports; `key` is what the world is asked about."""
+
     __slots__ = ("args", "ident", "key", "ports")
     kind = "Leaf"
 
@@ -50,6 +53,7 @@ class Condition(Leaf):
     kind = "Condition"
 
     def tick(self, world: World) -> Status:
+        """Ask the world whether the condition holds."""
         self.status = status = SUCCESS if world.check(self.key) else FAILURE
         return status
 
@@ -65,6 +69,7 @@ class Action(Leaf):
     kind = "Action"
 
     def tick(self, world: World) -> Status:
+        """Start the action, or step it when it is running; the world's answer."""
         if self.status is RUNNING:
             status = world.step(self.key)
         else:
@@ -73,6 +78,7 @@ class Action(Leaf):
         return status
 
     def halt(self, world: World) -> None:
+        """Tell the world to stop the action, if it is running."""
         if self.status is RUNNING:
             world.halt(self.key)
         self.status = IDLE

@@ -46,9 +46,11 @@ class Node:
 
     @property
     def children(self) -> list[Node]:
+        """The node's children, in order (none for a leaf)."""
         return []
 
     def tick(self, world: World) -> Status:
+        """Tick the node once against `world`: SUCCESS, FAILURE or RUNNING."""
         raise NotImplementedError
 
     def halt(self, world: World) -> None:
@@ -96,9 +98,11 @@ class Composite(Node):
             self.append(child)
 
     def append(self, child: Node) -> None:
+        """Add `child` as the last child."""
         self.insert(len(self.children), child)
 
     def insert(self, index: int, child: Node) -> None:
+        """Add `child` at `index`; a node has one parent at most."""
         if child.parent is not None:
             raise ValueError(f"node {child.name!r} already has a parent")
         child.parent = self
@@ -117,12 +121,14 @@ class Composite(Node):
         self.insert(index, new)
 
     def index_of(self, child: Node) -> int:
+        """Where `child` is among the children (by identity)."""
         try:  # nodes compare by identity: the list finds it in C
             return self.children.index(child)
         except ValueError:
             raise ValueError(f"{child.name!r} is not a child of {self.name!r}") from None
 
     def halt(self, world: World) -> None:
+        """Halt every child that is not idle, then this node."""
         for child in self.children:
             if child.status is not IDLE:
                 child.halt(world)

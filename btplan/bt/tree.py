@@ -22,7 +22,9 @@ class TickRecorder(Protocol):
     closing an import circle.
     """
 
-    def tick(self, tree: BehaviorTree, world: World) -> Status: ...
+    def tick(self, tree: BehaviorTree, world: World) -> Status:
+        """Tick `tree` against `world` and record what the tick reached."""
+        ...
 
 
 class BehaviorTree:
@@ -46,6 +48,7 @@ class BehaviorTree:
         self.imported: ImportedTrees | None = None
 
     def tick(self, world: World) -> Status:
+        """Tick the root once against `world` (through the recorder when one is attached)."""
         self.ticks += 1
         if self.debug:
             from btplan.bt.debug import StrictWorld  # only with --debug
@@ -56,7 +59,9 @@ class BehaviorTree:
         return self.root.tick(world)
 
     def halt(self, world: World) -> None:
+        """Halt everything the tree has RUNNING (the world is told of each action)."""
         self.root.halt(world)
 
     def nodes(self) -> list[Node]:
+        """Every node, depth first, left to right."""
         return self.root.walk()
