@@ -9,6 +9,10 @@ from __future__ import annotations
 import gc
 import sys
 
+OPTIONAL_PORTS = {"--groot": "1667", "--view": "8765"}
+"""Options of `btplan run` whose port may be left out, and the port they then take
+(btplan.cli.monitors.with_default_ports): Groot2's default, and the browser view's."""
+
 TYPE_CHECKING = False
 if TYPE_CHECKING:
     from typing import Any
@@ -39,7 +43,7 @@ def main() -> None:
     from btplan.cli.edge import EXIT_BUG, report_bug
 
     only_the_command_asked_for(sys.argv[1:2])
-    if "--groot" in sys.argv or "--view" in sys.argv:  # ports that may be left out
+    if any(flag in sys.argv for flag in OPTIONAL_PORTS):
         from btplan.cli.monitors import with_default_ports
 
         sys.argv[1:] = with_default_ports(sys.argv[1:])
@@ -83,4 +87,4 @@ def only_the_command_asked_for(first: list[str]) -> None:
         app.registered_commands, app.registered_groups = commands, groups
 
 
-__all__ = ["app", "main", "only_the_command_asked_for"]
+__all__ = ["OPTIONAL_PORTS", "app", "main", "only_the_command_asked_for"]

@@ -1,5 +1,5 @@
-"""The monitors `btplan run` can open: Groot2's live protocol (`--groot [PORT]`) and
-a Groot2 replay file (`--btlog FILE.btlog`)."""
+"""The monitors `btplan run` can open: Groot2's live protocol (`--groot [PORT]`), a
+Groot2 replay file (`--btlog FILE.btlog`) and the browser view (`--view [PORT]`)."""
 
 from __future__ import annotations
 
@@ -7,12 +7,10 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any
 
+from btplan.cli import OPTIONAL_PORTS
 from btplan.errors import InputError, Span
 
-__all__ = ["OPTIONAL_PORTS", "closing_monitors", "open_monitors", "with_default_ports"]
-
-OPTIONAL_PORTS = {"--groot": "1667", "--view": "8765"}
-"""Options whose port may be left out, and the port they then take."""
+__all__ = ["closing_monitors", "open_monitors", "with_default_ports"]
 
 
 def with_default_ports(argv: Sequence[str]) -> list[str]:

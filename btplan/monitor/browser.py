@@ -88,6 +88,12 @@ class TraceLines:
         base["tick"] = dropped["tick"]
         self._base = base
 
+    @property
+    def total(self) -> int:
+        """Lines of the run so far, those folded into the base line included."""
+        with self.lock:
+            return self._first + len(self._lines)
+
     def since(self, start: int) -> tuple[list[str], int]:
         """The lines from index `start` on, and the total so far."""
         with self.lock:
@@ -157,7 +163,7 @@ class BrowserView:
         done) first, within CLOSE_WAIT seconds; then the server stops. The page keeps
         every tick it has, to scrub through after."""
         self.lines.done = True
-        _, total = self.lines.since(1 << 62)
+        total = self.lines.total
         waited = time.monotonic() + CLOSE_WAIT
         while self.served and (self.served < total or not self._told_done) and (
                 time.monotonic() < waited):
@@ -168,7 +174,7 @@ class BrowserView:
     def info(self) -> dict[str, Any]:
         """What the page asks first and while it follows a run: the title, whether the
         run is live and done, how many lines there are, whether pictures come too."""
-        _, total = self.lines.since(1 << 62)
+        total = self.lines.total
         self._told_done = self.lines.done and self.served >= total
         return {"title": self.title, "live": self.live, "done": self.lines.done,
                 "lines": total, "frames": self.camera is not None}

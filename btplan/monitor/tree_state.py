@@ -192,7 +192,7 @@ class TreeState:
 
     def uid(self, node: Node) -> int:
         """The node's uid (0 for a node past MAX_UID)."""
-        return self._uids.get(id(node), 0)
+        return self.uid_of(id(node))
 
     def nodes(self) -> list[tuple[int, Node]]:
         """The nodes of the tree, depth first, with their uids."""

@@ -72,6 +72,7 @@ class RosRobot(Robot):
         self._spinning = threading.Thread(target=self._spin, name="ros-executor", daemon=True)
         self._spinning.start()
         self._latest: dict[str, tuple[Any, float]] = {}
+        self._subscribed: set[str] = set()
         self._why: dict[str, str] = {}
         self._clients: dict[str, Any] = {}
         for name, action in sorted(bindings.actions.items()):
@@ -128,8 +129,7 @@ class RosRobot(Robot):
                              f"{self.settings.server_wait:g} s")
         # The first tick reads every condition: let the state topics' first messages come
         # (a topic still silent then reads false, and dead_ends says so).
-        topics = {c.topic for c in self.bindings.conditions.values() if c.topic is not None}
-        while not topics <= set(self._latest) and time.monotonic() < deadline:
+        while not self._subscribed <= set(self._latest) and time.monotonic() < deadline:
             time.sleep(0.01)
 
     # --- conditions ---------------------------------------------------------------------
@@ -138,21 +138,21 @@ class RosRobot(Robot):
         predicate = next(p for p in self.task.domain.predicates if p.name == name)
         params = [p.name for p in predicate.parameters]
         test = self.bindings.tests[name]
+        kind = message_type(condition.type)
         if condition.topic is not None:
-            topic = condition.topic
-            if topic not in self._latest and not any(
-                    c.topic == topic for n, c in self.bindings.conditions.items()
-                    if n < name):
-                self._subscribe(topic, message_type(condition.type))
+            if condition.topic not in self._subscribed:  # conditions may share a topic
+                self._subscribed.add(condition.topic)
+                self._subscribe(condition.topic, kind)
 
             def read(*args: str) -> bool:
                 return self._read_topic(name, condition, test, params, args)
         else:
-            service: Any = self.node.create_client(message_type(condition.type),
-                                                   condition.service or "")
+            service: Any = self.node.create_client(kind, condition.service or "")
+            fields = field_paths(kind.Request)
 
             def read(*args: str) -> bool:
-                return self._call_service(name, condition, service, params, args)
+                return self._call_service(name, condition, service, kind.Request, fields,
+                                          params, args)
 
         read.__signature__ = _signature(params)  # type: ignore[attr-defined]
         self.condition(name)(read)
@@ -181,11 +181,10 @@ class RosRobot(Robot):
         return bool(test(names))
 
     def _call_service(self, name: str, condition: ConditionBinding, client: Any,
-                      params: list[str], args: tuple[str, ...]) -> bool:
-        kind = message_type(condition.type)
+                      make_request: Any, fields: dict[str, str], params: list[str],
+                      args: tuple[str, ...]) -> bool:
         names = {**self.bindings.tables, **dict(zip(params, args, strict=True))}
-        request = kind.Request()
-        fields = field_paths(kind.Request)
+        request = make_request()
         for field, expression in self.bindings.requests.get(name, {}).items():
             _set(request, field, _as_field(expression(names), fields[field]))
         future = client.call_async(request)
