@@ -2,7 +2,8 @@
 
 - `NS/tree` (std_msgs/String, kept for late subscribers): the tree as BehaviorTree.CPP
   XML with a `_uid` on every node (btplan.monitor.tree_state), whenever it changes;
-- `NS/statuses` (std_msgs/String): one JSON object per tick,
+- `NS/statuses` (std_msgs/String, the last KEPT_TICKS kept for late subscribers): one
+  JSON object per tick,
   `{"tick": N, "status": ..., "statuses": [[uid, status], ...], "grew": [...]}`.
 """
 
@@ -17,7 +18,12 @@ TYPE_CHECKING = False
 if TYPE_CHECKING:
     from btplan.monitor.run_monitor import TickUpdate
 
-__all__ = ["TreeTopics"]
+__all__ = ["KEPT_TICKS", "TreeTopics"]
+
+KEPT_TICKS = 100
+"""Ticks of statuses kept for a subscriber that comes late (and asks for them, with a
+transient-local subscription): one that joins while the run goes on gets the ticks it
+missed just before."""
 
 
 class TreeTopics:
@@ -29,9 +35,10 @@ class TreeTopics:
 
         self._string = String
         kept = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+        recent = QoSProfile(depth=KEPT_TICKS, durability=DurabilityPolicy.TRANSIENT_LOCAL)
         base = namespace.rstrip("/")
         self.tree = node.create_publisher(String, f"{base}/tree", kept)
-        self.statuses = node.create_publisher(String, f"{base}/statuses", 10)
+        self.statuses = node.create_publisher(String, f"{base}/statuses", recent)
         self._version = -1
 
     def publish(self, state: TreeState, update: TickUpdate) -> None:

@@ -225,7 +225,8 @@ def status(m):
     seen["last_tick"] = json.loads(m.data)["tick"]
 node.create_subscription(String, "/btplan/tree", tree,
                          QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
-node.create_subscription(String, "/btplan/statuses", status, 100)
+node.create_subscription(String, "/btplan/statuses", status,
+                         QoSProfile(depth=100, durability=DurabilityPolicy.TRANSIENT_LOCAL))
 heard = []
 node.create_subscription(String, "/robot/holding", heard.append, 10)
 while not heard:  # discovery works on this domain: the robot is heard
