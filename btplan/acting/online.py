@@ -172,7 +172,8 @@ def run_task(
                 # The tree cannot grow any further (no achiever, going round in circles),
                 # or a skill raised and the run stops on it: the run ends as not reached,
                 # and its records, this last tick included, tell why.
-                reason = error.reason if isinstance(error, PlanningError) else str(error)
+                reason = (error.reason + world_says(loop.skills)
+                          if isinstance(error, PlanningError) else str(error))
                 recorder.close_tick()
             except BaseException as error:  # KeyboardInterrupt, SIGTERM, a world's bug
                 raised = error

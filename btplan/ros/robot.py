@@ -116,8 +116,8 @@ class RosRobot(Robot):
         self.action(name)(start)
 
     def wait_for_servers(self) -> None:
-        """Wait for every action server and the first message of every state topic
-        (`server_wait` in all); a WorldError names the servers that did not come."""
+        """Wait for every action server, then for the first message of every state topic
+        (`server_wait` for each); a WorldError names the servers that did not come."""
         deadline = time.monotonic() + self.settings.server_wait
         missing = []
         for name, client in sorted(self._clients.items()):
@@ -127,8 +127,10 @@ class RosRobot(Robot):
         if missing:
             raise WorldError(f"no action server {', '.join(missing)} within "
                              f"{self.settings.server_wait:g} s")
-        # The first tick reads every condition: let the state topics' first messages come
-        # (a topic still silent then reads false, and dead_ends says so).
+        # The first tick reads every condition: let the state topics' first messages come,
+        # within a wait of their own (a topic still silent then reads false, and dead_ends
+        # says so).
+        deadline = time.monotonic() + self.settings.server_wait
         while not self._subscribed <= set(self._latest) and time.monotonic() < deadline:
             time.sleep(0.01)
 

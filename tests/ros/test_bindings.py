@@ -45,7 +45,7 @@ def test_the_example_bindings_check() -> None:
     (("when = \"msg.data == o\"", "when = \"msg.datum == o\""), "no field 'datum'"),
     (("when = \"msg.data == o\"", "when = \"msg.data == x\""), "unknown name 'x'"),
     (("when = \"msg.data == o\"", "when = \"__import__('os')\""), "only abs"),
-    (("stale_after = 1.0\n\n[conditions.hand_empty]", "stale_after = -1\n\n[conditions.hand_empty]"),
+    (("stale_after = 2.0\n\n[conditions.hand_empty]", "stale_after = -1\n\n[conditions.hand_empty]"),
      "greater than 0"),
 ])
 def test_each_mistake_is_named_at_its_table(change: tuple[str, str], said: str) -> None:
