@@ -18,7 +18,10 @@ TYPE_CHECKING = False
 if TYPE_CHECKING:
     from btplan.monitor.run_monitor import TickUpdate
 
-__all__ = ["KEPT_TICKS", "TreeTopics"]
+__all__ = ["CLOSE_WAIT", "KEPT_TICKS", "TreeTopics"]
+
+CLOSE_WAIT = 1.0
+"""Seconds the end of a run waits for subscribers to acknowledge the last messages."""
 
 KEPT_TICKS = 100
 """Ticks of statuses kept for a subscriber that comes late (and asks for them, with a
@@ -52,4 +55,9 @@ class TreeTopics:
             "grew": [e.condition for e in record.expansions]})))
 
     def close(self) -> None:
-        """Nothing to finish: the publishers go with the robot's node."""
+        """Let the subscribers that have matched get what was published (up to
+        CLOSE_WAIT seconds) before the robot's node goes."""
+        from rclpy.duration import Duration
+
+        for publisher in (self.tree, self.statuses):
+            publisher.wait_for_all_acked(Duration(seconds=CLOSE_WAIT))

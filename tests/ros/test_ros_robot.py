@@ -200,7 +200,7 @@ def test_the_tree_and_its_statuses_are_on_topics(
     try:
         assert listener.stdout is not None
         assert listener.stdout.readline().strip() == "listening"  # it hears the robot
-        done, lines = btplan_run(env, tmp_path)
+        done, lines = btplan_run(env, tmp_path, "--hz", "10")  # time for discovery
         robot.stop()
         assert done.returncode == 0, done.stderr
         out, err = listener.communicate(timeout=150)
@@ -233,7 +233,7 @@ while not heard:  # discovery works on this domain: the robot is heard
     rclpy.spin_once(node, timeout_sec=0.1)
 print("listening", flush=True)
 quiet_since = began = time.monotonic()
-while (time.monotonic() - quiet_since < 4.0 or not seen["statuses"]) and (
+while (time.monotonic() - quiet_since < 4.0 or not seen["statuses"] or not seen["tree"]) and (
         time.monotonic() - began < 120):
     before = seen["statuses"]
     rclpy.spin_once(node, timeout_sec=0.1)
