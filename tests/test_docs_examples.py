@@ -1,9 +1,16 @@
-"""The examples of the documentation run as written.
+"""The examples of the documentation run as written, and say what the page shows.
 
-Every `sh` and `python` block of every page under docs/ is run from a fresh folder that
-holds the shipped domains and examples: shell lines one by one (exit 0), each page's
-Python blocks in one interpreter, in order, as a reader pastes them (exit 0). What is not
-run is listed below with the reason, and is run elsewhere where it can be.
+Every `sh`, `console` and `python` block of every page under docs/ (its subfolders
+included) is run from a fresh folder that holds the shipped domains and examples:
+
+- shell lines one by one, in page order (exit 0);
+- a `console` block's `$ ` lines the same way, each followed by the output the page
+  shows, which must match what the command prints (standard output and error together;
+  a line `...` stands for any lines, and `...` inside a line for any text, so that times
+  and paths may vary);
+- each page's Python blocks in one interpreter, in order, as a reader pastes them.
+
+What is not run is listed below with the reason, and is run elsewhere where it can be.
 """
 
 from __future__ import annotations
@@ -20,7 +27,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
-BLOCK = re.compile(r"^( *)```(sh|python)\n(.*?)^\1```", re.MULTILINE | re.DOTALL)
+BLOCK = re.compile(r"^( *)```(sh|console|python)\n(.*?)^\1```", re.MULTILINE | re.DOTALL)
 
 NOT_RUN = {
     "pip install": "installs packages: the suite runs in the installed environment",
@@ -49,11 +56,56 @@ PYTHON_NOT_RUN = {
 }
 """Pages whose Python blocks are not run, and why."""
 
-PAGES = sorted(p.name for p in DOCS.glob("*.md"))
+PAGES = sorted(str(p.relative_to(DOCS)) for p in DOCS.rglob("*.md"))
+
+
+def all_blocks(page: str) -> list[tuple[str, str]]:
+    """The page's runnable blocks in page order, as (language, body), indents removed."""
+    found = []
+    for indent, kind, body in BLOCK.findall((DOCS / page).read_text()):
+        lines = [line[len(indent):] if line.startswith(indent) else line.lstrip()
+                 for line in body.splitlines()]
+        found.append((kind, "\n".join(lines) + "\n"))
+    return found
 
 
 def blocks(page: str, language: str) -> list[str]:
-    return [body for _, kind, body in BLOCK.findall((DOCS / page).read_text()) if kind == language]
+    return [body for kind, body in all_blocks(page) if kind == language]
+
+
+def sessions(body: str) -> list[tuple[str, list[str]]]:
+    """A console block's commands, each with the output lines the page shows after it."""
+    shown: list[tuple[str, list[str]]] = []
+    lines = body.splitlines()
+    index = 0
+    while index < len(lines):
+        line = lines[index]
+        if not line.startswith("$ "):
+            raise AssertionError(f"console block: output before any command: {line!r}")
+        command = line[2:]
+        while command.endswith("\\") and index + 1 < len(lines):
+            index += 1
+            command = command[:-1].rstrip() + " " + lines[index].strip()
+        index += 1
+        output = []
+        while index < len(lines) and not lines[index].startswith("$ "):
+            output.append(lines[index])
+            index += 1
+        shown.append((command.split("  #")[0].strip(), output))
+    return shown
+
+
+def line_pattern(line: str) -> str:
+    return ".*".join(re.escape(part) for part in line.rstrip().split("..."))
+
+
+def output_matches(shown: list[str], printed: str) -> bool:
+    """Whether the printed text is what the page shows, `...` standing for what varies."""
+    pattern = []
+    for line in shown:
+        pattern.append(r"(?:.*\n)*?" if line.strip() == "..." else line_pattern(line) + r"[ \t]*\n")
+    text = "".join(line.rstrip() + "\n" for line in printed.splitlines())
+    return re.fullmatch("".join(pattern), text) is not None
 
 
 def commands(body: str) -> list[str]:
@@ -74,10 +126,31 @@ def environment() -> dict[str, str]:
     return {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
 
 
-@pytest.mark.parametrize("page", [p for p in PAGES if blocks(p, "sh")])
+def run_line(page: str, line: str, folder: Path) -> str:
+    """Runs one shell line of the page as a reader would, and returns what it printed."""
+    done = subprocess.run(["bash", "-o", "pipefail", "-c", line], cwd=folder,
+                          env=environment(), stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True, timeout=600)
+    assert done.returncode == 0, f"{page}: {line}\n{done.stdout[-2000:]}"
+    return done.stdout
+
+
+@pytest.mark.parametrize("page", [p for p in PAGES if blocks(p, "sh") or blocks(p, "console")])
 def test_the_shell_examples_run(page: str, folder: Path) -> None:
     ran = 0
-    for body in blocks(page, "sh"):
+    for kind, body in all_blocks(page):
+        if kind == "console":
+            for line, shown in sessions(body):
+                if any(part in line for part in NOT_RUN):
+                    continue
+                printed = run_line(page, line, folder)
+                assert output_matches(shown, printed), (
+                    f"{page}: {line}\nthe page shows:\n" + "\n".join(shown)
+                    + f"\nit printed:\n{printed}")
+                ran += 1
+            continue
+        if kind != "sh":
+            continue
         for line in commands(body):
             if any(part in line for part in NOT_RUN):
                 continue
@@ -90,10 +163,7 @@ def test_the_shell_examples_run(page: str, folder: Path) -> None:
                 serving.wait(timeout=30)
                 assert "at http://127.0.0.1:" in said, said
             else:
-                done = subprocess.run(["bash", "-o", "pipefail", "-c", line], cwd=folder,
-                                      env=environment(), capture_output=True, text=True,
-                                      timeout=600)
-                assert done.returncode == 0, f"{page}: {line}\n{done.stderr[-2000:]}"
+                run_line(page, line, folder)
             ran += 1
     if page not in ("reactivity.md", "ros.md", "pybullet.md"):
         assert ran, f"{page}: no example ran"
@@ -106,3 +176,24 @@ def test_the_python_examples_run(page: str, folder: Path) -> None:
     done = subprocess.run([sys.executable, "-c", script], cwd=folder, env=environment(),
                           capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, f"{page}\n{done.stderr[-3000:]}"
+
+
+@pytest.mark.parametrize(("shown", "printed", "matches"), [
+    (["a", "b"], "a\nb\n", True),
+    (["a", "b"], "a\nc\n", False),
+    (["a"], "a\nb\n", False),
+    (["a", "..."], "a\nb\nc\n", True),
+    (["...", "c"], "a\nb\nc\n", True),
+    (["took ... s"], "took 0.004 s\n", True),
+    (["took ... s"], "took 0.004 ms\n", False),
+    ([], "", True),
+    ([], "something\n", False),
+])
+def test_the_shown_output_is_compared_with_what_varies_left_out(
+        shown: list[str], printed: str, matches: bool) -> None:
+    assert output_matches(shown, printed) is matches
+
+
+def test_a_console_block_pairs_each_command_with_its_output() -> None:
+    body = "$ btplan plan x \\\n    -q\nplanned\n$ cat plan.txt  # the plan\n(pick)\n"
+    assert sessions(body) == [("btplan plan x -q", ["planned"]), ("cat plan.txt", ["(pick)"])]

@@ -37,10 +37,19 @@ DEFAULT_MAX_TICKS = 100_000
 
 
 def load(*paths: str, problem: str | None = None) -> Task:
-    """Read a domain and a problem (.bt or .pddl, one file or two) into a Task."""
-    from btplan.lang import load as load_paths
+    """Read a domain and a problem (.bt or .pddl, one file or two) into a Task.
 
-    return load_paths(list(paths), problem)
+    A bare name that is not a file names a shipped domain, as on the command line, so
+    that the examples work from any folder:
+
+    >>> task = load("pick_place")
+    >>> [str(goal) for goal in task.goal_literals]
+    ['on(cube, goal)']
+    """
+    from btplan.lang import load as load_paths
+    from btplan.shipped import resolve
+
+    return load_paths([resolve(path) for path in paths], problem)
 
 
 def plan(
@@ -74,6 +83,14 @@ def plan(
     Raises a PlanningError (NoAchieverError, UnresolvableConflictError,
     NoProgressError, BudgetExceededError) with a reason when no tree is found, and
     Interrupted when `stop`, asked after every tick, says to stop.
+
+    The paper's Example 1, planned: four expansions, and the plan the tree executes.
+
+    >>> result = plan(load("pick_place"))
+    >>> result.stats.expansions, result.stats.tree_size
+    (4, 19)
+    >>> [str(action) for action in result.executed]
+    ['MoveTo(cube, tau_cube)', 'Pick(cube)', 'MoveTo(goal, tau_goal)', 'Place(cube, goal)']
     """
     opts = options or PlannerOptions()
     if max_expansions is not None:
