@@ -52,12 +52,15 @@ def field(*, default_factory: Callable[[], T]) -> T:
 
 
 @overload
-def record(cls: type[T], /) -> type[T]: ...
+def record(cls: type[T], /) -> type[T]:
+    """`@record` bare: the class made a record with every option off."""
 
 
 @overload
 def record(*, frozen: bool = False, slots: bool = False,
-           kw_only: bool = False) -> Callable[[type[T]], type[T]]: ...
+           kw_only: bool = False) -> Callable[[type[T]], type[T]]:
+    """`@record(frozen=..., slots=..., kw_only=...)`: a decorator making records with
+    those options, as `dataclass(...)` takes them."""
 
 
 @dataclass_transform(field_specifiers=(field,))

@@ -19,10 +19,14 @@ def folder() -> Path:
 
 
 def scenes() -> Path:
+    """The shipped scene files (TOML, named after the domain they set up), package data
+    beside the domains."""
     return folder() / "scenes"
 
 
 def names() -> list[str]:
+    """The shipped domains as bare names (file stems without `.bt`, sorted): what `resolve`
+    accepts in place of a path."""
     return sorted(p.stem for p in folder().glob("*.bt"))
 
 

@@ -96,6 +96,8 @@ class PlanExecutor:
         return self._holds(self.task.goal_literals, state)
 
     def done(self) -> bool:
+        """Whether the goal holds in the world's facts now. Every literal read counts in
+        `checks`, the cost the sweep sets against the blended loop's condition checks."""
         return self._holds(self.task.goal_literals, self.world.facts())
 
     # --- planning ---------------------------------------------------------------------

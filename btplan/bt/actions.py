@@ -26,6 +26,7 @@ class Constant(Node):
         self.result = result
 
     def tick(self, world: World) -> Status:
+        """Answer the fixed `result`, without asking the world or reading the blackboard."""
         self.status = status = self.result
         return status
 
@@ -42,6 +43,8 @@ class Sleep(Node):
         self._left = 0
 
     def tick(self, world: World) -> Status:
+        """A tick that finds it idle arms the countdown: RUNNING on that tick and the next
+        `ticks - 1`, SUCCESS on the one after. A halt rearms it for the next run."""
         if self.status is not RUNNING:
             self._left = self.ticks
             if self._left <= 0:
@@ -70,6 +73,9 @@ class SetBlackboard(Node):
         self.ports = ports
 
     def tick(self, world: World) -> Status:
+        """Copy the `{key}` entry or store the literal text, then SUCCESS. A missing `value`,
+        an unset source entry or an unresolvable `output_key` raises NodeError, as BT.CPP
+        throws there instead of failing."""
         board = self.ports.board
         raw = self.ports.values.get("value")
         if raw is None:
@@ -112,6 +118,8 @@ class UnsetBlackboard(Node):
         self.ports = ports
 
     def tick(self, world: World) -> Status:
+        """Remove the entry `key` names, SUCCESS whether or not it existed; only a missing
+        `key` port raises NodeError."""
         self.ports.board.unset(self.ports.key("key"))
         self.status = SUCCESS
         return SUCCESS
@@ -129,6 +137,8 @@ class ScriptAction(Node):
         self.ports = ports
 
     def tick(self, world: World) -> Status:
+        """Run the script for its effect on the blackboard; always SUCCESS. A script that cannot
+        run (an unset entry, strings in arithmetic) raises NodeError rather than failing."""
         self.script.run(self.ports.board)
         self.status = SUCCESS
         return SUCCESS
@@ -146,6 +156,8 @@ class ScriptCondition(Node):
         self.ports = ports
 
     def tick(self, world: World) -> Status:
+        """SUCCESS when the script's last value reads as true (non-zero, `true`), FAILURE
+        otherwise; never RUNNING. Assignments in the script do take effect."""
         self.status = status = SUCCESS if self.script.holds(self.ports.board) else FAILURE
         return status
 
@@ -162,12 +174,16 @@ class WasEntryUpdated(Node):
         self._seen = 0
 
     def tick(self, world: World) -> Status:
+        """Compare the entry's write count with the one seen on the previous tick: the first
+        tick counts any earlier write as new, and an entry never written is FAILURE."""
         seq = self.ports.board.sequence(self.ports.key("entry"))
         updated, self._seen = seq != self._seen, seq
         self.status = status = SUCCESS if updated else FAILURE
         return status
 
     def halt(self, world: World) -> None:
+        """Reset only the status: the write count seen is kept, so a halt does not make an old
+        write look new on the next tick."""
         self.status = IDLE
 
 

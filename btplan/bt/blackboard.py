@@ -40,6 +40,8 @@ class Blackboard:
                                       parent.enums if parent is not None else {})
 
     def root(self) -> Blackboard:
+        """The blackboard of the outermost tree instance, which `@key` names from any SubTree
+        depth."""
         board = self
         while board.parent is not None:
             board = board.parent
@@ -60,10 +62,14 @@ class Blackboard:
             board = board.parent
 
     def has(self, key: str) -> bool:
+        """Whether the entry exists where the remapping leads (`owner`); a remapped key whose
+        parent entry was never written is absent."""
         board, name = self.owner(key)
         return name in board.values
 
     def get(self, key: str) -> Value:
+        """The entry's value, found through the remapping; NodeError when it does not exist,
+        since BT.CPP stops the tree there too."""
         board, name = self.owner(key)
         try:
             return board.values[name]
@@ -71,11 +77,15 @@ class Blackboard:
             raise NodeError(f"the blackboard has no entry {key!r}") from None
 
     def set(self, key: str, value: Value) -> None:
+        """Write the entry where the remapping leads (so a SubTree writes its caller's entry)
+        and count the write for SkipUnlessUpdated, WaitValueUpdate and WasEntryUpdated."""
         board, name = self.owner(key)
         board.values[name] = value
         board.seq[name] = board.seq.get(name, 0) + 1
 
     def unset(self, key: str) -> None:
+        """Remove the entry where the remapping leads; no error when there is none. Its write
+        count is kept, so a later write still reads as new."""
         board, name = self.owner(key)
         board.values.pop(name, None)
 
@@ -108,6 +118,8 @@ def as_text(value: Value) -> str:
 
 
 def to_number(value: Value, what: str) -> float:
+    """A port or entry value as a float: numbers (and booleans) as they are, text in decimal
+    or `0x` hex. Other text is a NodeError whose message starts with `what`."""
     if isinstance(value, (int, float)):
         return float(value)
     text = value.strip()
@@ -118,6 +130,8 @@ def to_number(value: Value, what: str) -> float:
 
 
 def to_int(value: Value, what: str) -> int:
+    """A value as a whole number for counting ports (`num_cycles`, `num_attempts`): `3` and
+    `3.0` pass, `2.5` or non-numeric text is a NodeError naming `what`."""
     number = to_number(value, what)
     if not number.is_integer():
         raise NodeError(f"{what}: {as_text(value)!r} is not a whole number")
@@ -125,6 +139,8 @@ def to_int(value: Value, what: str) -> int:
 
 
 def to_bool(value: Value, what: str) -> bool:
+    """A value as true or false: numbers by being non-zero, text only as `true`, `false`,
+    `1` or `0` (any case); other text is a NodeError naming `what`, not a guess."""
     if isinstance(value, (bool, int, float)):
         return bool(value)
     text = value.strip().lower()
@@ -152,6 +168,9 @@ class Ports:
         self.defaults = defaults or {}
 
     def raw(self, port: str) -> Value:
+        """The port's value this tick: the entry's value for a `{key}` port, else the literal
+        text or the declared default. Not given and no default, or an unset entry, is a
+        NodeError naming the node and port."""
         text = self.values.get(port, self.defaults.get(port))
         if text is None:
             raise NodeError(f"{self.owner}: input port {port!r} is not set")
@@ -163,15 +182,19 @@ class Ports:
         return self.board.get(key)
 
     def text(self, port: str) -> str:
+        """The port's value as text, numbers written the BT.CPP way (`3`, not `3.0`)."""
         return as_text(self.raw(port))
 
     def int(self, port: str) -> int:
+        """The port's value as a whole number (`to_int`); errors name `owner.port`."""
         return to_int(self.raw(port), f"{self.owner}.{port}")
 
     def number(self, port: str) -> float:
+        """The port's value as a float (`to_number`); errors name `owner.port`."""
         return to_number(self.raw(port), f"{self.owner}.{port}")
 
     def bool(self, port: str) -> bool:
+        """The port's value as true or false (`to_bool`); errors name `owner.port`."""
         return to_bool(self.raw(port), f"{self.owner}.{port}")
 
     def key(self, port: str) -> str:
@@ -182,6 +205,8 @@ class Ports:
         return pointer(text, port) or text
 
     def write(self, port: str, value: Value) -> None:
+        """Write `value` to the entry the output port names (`key`), counting the write as any
+        `Blackboard.set` does."""
         self.board.set(self.key(port), value)
 
 

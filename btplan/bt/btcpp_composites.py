@@ -69,6 +69,8 @@ class BtcppSequence(Sequence):
         self.skipped = 0
 
     def tick(self, world: World) -> Status:
+        """Sequence's tick with BT.CPP's SKIPPED rules (`_counting_tick`): SKIPPED when every
+        child was skipped, and a decision halts the other children still active."""
         return _counting_tick(self, world)
 
 
@@ -84,6 +86,8 @@ class BtcppFallback(Fallback):
         self.skipped = 0
 
     def tick(self, world: World) -> Status:
+        """Fallback's tick with BT.CPP's SKIPPED rules (`_counting_tick`): SKIPPED when every
+        child was skipped, and a decision halts the other children still active."""
         return _counting_tick(self, world)
 
 
@@ -97,6 +101,9 @@ class BtcppParallel(Parallel):
     __slots__ = ()
 
     def tick(self, world: World) -> Status:
+        """Parallel's tick, except that a SKIPPED child is not finished (it is ticked again next
+        tick) and counts towards a negative success threshold; SKIPPED when every child was
+        skipped. A decision halts every child that is not idle."""
         children = self.children
         need_success = self._threshold(self.success)
         need_failure = self._threshold(self.failure)

@@ -33,6 +33,8 @@ class SequenceWithMemory(Sequence):
         super().__init__(children, name, memory=True)
 
     def tick(self, world: World) -> Status:
+        """Resume at the child where the last tick stopped (running or failed); see the class
+        for each child status. SKIPPED when every child was skipped; finishing resets all."""
         children = self.children
         skipped = True
         while self._current < len(children):
@@ -102,6 +104,8 @@ class AsyncSequence(Sequence):
         super().__init__(children, name, memory=True)
 
     def tick(self, world: World) -> Status:
+        """Resume the remembered child and move on after SUCCESS or SKIPPED, yielding after a
+        fresh SUCCESS so one tick runs at most one synchronous child."""
         return _Async.run(self, world, SUCCESS)
 
 
@@ -116,6 +120,8 @@ class AsyncFallback(Fallback):
         super().__init__(children, name, memory=True)
 
     def tick(self, world: World) -> Status:
+        """Resume the remembered child and move on after FAILURE or SKIPPED, yielding after a
+        fresh FAILURE so one tick runs at most one synchronous child."""
         return _Async.run(self, world, FAILURE)
 
 
@@ -136,6 +142,9 @@ class ParallelAll(Composite):
         self._failures = 0
 
     def tick(self, world: World) -> Status:
+        """Tick each unfinished child; `max_failures` is read every tick, so a `{key}` value may
+        change it. RUNNING while a child neither finished nor was skipped this tick, SKIPPED
+        when all were skipped; the verdict clears the counts and resets the children."""
         children = self.children
         threshold = self.ports.int("max_failures")
         if threshold < 0:
@@ -163,6 +172,8 @@ class ParallelAll(Composite):
         return status
 
     def halt(self, world: World) -> None:
+        """Forget which children finished and how many failed, so the next tick starts a fresh
+        run; then halt the children."""
         self._done, self._failures = set(), 0
         super().halt(world)
 
@@ -183,6 +194,8 @@ class IfThenElse(Composite):
         self._branch = 0
 
     def tick(self, world: World) -> Status:
+        """Ask the condition only while no branch is chosen, then tick the chosen branch until it
+        finishes. A SKIPPED condition raises NodeError, as BT.CPP 4.8 stops on it too."""
         children = self.children
         if self._branch == 0:
             status = children[0].tick(world)
@@ -204,6 +217,8 @@ class IfThenElse(Composite):
         return status
 
     def halt(self, world: World) -> None:
+        """Drop the chosen branch, so the next tick asks the condition again; then halt the
+        children."""
         self._branch = 0
         super().halt(world)
 
@@ -219,6 +234,8 @@ class WhileDoElse(Composite):
     kind = "WhileDoElse"
 
     def tick(self, world: World) -> Status:
+        """Tick the condition every tick and halt the branch it no longer picks before ticking
+        the other. A SKIPPED condition counts as no branch: FAILURE, with the children reset."""
         children = self.children
         condition = children[0].tick(world)
         if condition is RUNNING:
@@ -270,6 +287,9 @@ class Switch(Composite):
         self._running = -1
 
     def tick(self, world: World) -> Status:
+        """Read `variable` and the `case_i` ports now (an unset variable picks the default) and
+        tick the first match: equal text, enum value or number within a float epsilon. A
+        SKIPPED child is passed on without resetting the others."""
         match = self.cases
         try:
             variable = self.ports.text("variable")
@@ -296,6 +316,7 @@ class Switch(Composite):
         return status
 
     def halt(self, world: World) -> None:
+        """Forget which child was running, then halt the children."""
         self._running = -1
         super().halt(world)
 
@@ -321,6 +342,9 @@ class TryCatch(Composite):
         self._catching = False
 
     def tick(self, world: World) -> Status:
+        """Run the try children from where the last tick stopped; after a FAILURE only the catch
+        child is ticked, until it finishes, and the answer is FAILURE whatever it said.
+        SUCCESS when the whole try block succeeds."""
         children = self.children
         if not self._catching:
             while self._current < len(children) - 1:
@@ -347,6 +371,8 @@ class TryCatch(Composite):
         return FAILURE
 
     def halt(self, world: World) -> None:
+        """Rewind and halt the children. With `catch_on_halt`, a halt that cuts the try block
+        short then ticks the catch child once (halting it if RUNNING); the node ends IDLE."""
         in_try = self.status is RUNNING and not self._catching
         self._current, self._catching = 0, False
         super().halt(world)

@@ -38,6 +38,8 @@ class BoundCondition(Condition):
         self.board = board
 
     def tick(self, world: World) -> Status:
+        """Ask the world with each `{key}` port replaced by its entry's current text (the
+        literal while the entry is unset), so a Script can choose the argument; never RUNNING."""
         key = _resolve(self.ident, self.args, self.ports, self.board)
         self.status = status = SUCCESS if world.check(key) else FAILURE
         return status
@@ -56,6 +58,8 @@ class BoundAction(Action):
         self.running_key = self.key
 
     def tick(self, world: World) -> Status:
+        """Resolve the `{key}` ports only when the action starts and keep that key while it
+        runs, so an entry changed mid-action does not make `step` ask about another action."""
         if self.status is RUNNING:
             status = world.step(self.running_key)
         else:
@@ -65,6 +69,8 @@ class BoundAction(Action):
         return status
 
     def halt(self, world: World) -> None:
+        """Halt the action the world actually started (`running_key`), not the one the entries
+        would name now."""
         if self.status is RUNNING:
             world.halt(self.running_key)
         self.status = IDLE
@@ -83,6 +89,8 @@ class Opaque(Composite):
         self.node_kind = node_kind
 
     def tick(self, world: World) -> Status:
+        """Always raise NodeError naming the node: its C++ behaviour is unknown, and guessing
+        would make the tree tick unlike it does in BT.CPP."""
         raise NodeError(f"{self.ident} is a custom {self.node_kind.lower()} whose behaviour "
                         "btplan cannot know; it can be viewed and converted, not ticked")
 

@@ -31,6 +31,8 @@ class StrictWorld:
         self.world = world
 
     def check(self, key: LeafKey) -> bool:
+        """Forward the condition; a Status or None answer raises LeafContractError instead of
+        being read as true or false. Other answers are turned into a bool."""
         answer = self.world.check(key)
         if isinstance(answer, Status) or answer is None:
             raise LeafContractError(
@@ -39,12 +41,17 @@ class StrictWorld:
         return bool(answer)
 
     def start(self, key: LeafKey) -> Status:
+        """Start the action in the wrapped world; an answer that is not SUCCESS, FAILURE or
+        RUNNING raises LeafContractError."""
         return self._action("start", key, self.world.start(key))
 
     def step(self, key: LeafKey) -> Status:
+        """Step the action in the wrapped world; an answer that is not SUCCESS, FAILURE or
+        RUNNING raises LeafContractError."""
         return self._action("step", key, self.world.step(key))
 
     def halt(self, key: LeafKey) -> None:
+        """Forwarded unchecked: a halt answers nothing that could break the contract."""
         self.world.halt(key)
 
     @staticmethod

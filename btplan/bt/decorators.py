@@ -24,11 +24,15 @@ class Decorator(Composite):
 
     @property
     def child(self) -> Node:
+        """The one child. A decorator without one raises ValueError naming it: the code that
+        built the tree forgot the child."""
         if not self.children:
             raise ValueError(f"decorator {self.name or type(self).__name__!r} has no child")
         return self.children[0]
 
     def insert(self, index: int, child: Node) -> None:
+        """Composite.insert for at most one child: a second raises ValueError. `replace` still
+        works, as it removes the old child before inserting the new one."""
         if self.children:
             raise ValueError(f"decorator {self.name or type(self).__name__!r} already has a child")
         super().insert(index, child)
@@ -44,6 +48,7 @@ class Inverter(Decorator):
     kind = "Inverter"
 
     def tick(self, world: World) -> Status:
+        """Swap the child's SUCCESS and FAILURE; RUNNING and SKIPPED are passed on unchanged."""
         status = self.children[0].tick(world)
         if status is SUCCESS:
             status = FAILURE
@@ -60,6 +65,8 @@ class ForceSuccess(Decorator):
     kind = "ForceSuccess"
 
     def tick(self, world: World) -> Status:
+        """SUCCESS once the child finishes, either way. A SKIPPED child is passed on and leaves
+        the node marked RUNNING, as BT.CPP 4 does."""
         status = self.children[0].tick(world)
         if status is SKIPPED:  # passed on, as in BT.CPP 4
             self.status = RUNNING
@@ -75,6 +82,8 @@ class ForceFailure(Decorator):
     kind = "ForceFailure"
 
     def tick(self, world: World) -> Status:
+        """FAILURE once the child finishes, either way. A SKIPPED child is passed on and leaves
+        the node marked RUNNING, as BT.CPP 4 does."""
         status = self.children[0].tick(world)
         if status is SKIPPED:
             self.status = RUNNING
@@ -106,6 +115,9 @@ class Retry(Decorator):
         self._failures = 0
 
     def tick(self, world: World) -> Status:
+        """Tick the child, retrying in this tick after a FAILURE that followed RUNNING, and
+        answering RUNNING after an immediate FAILURE so the retry waits for the next tick.
+        FAILURE once `attempts` failures are used up; the count then starts again."""
         child = self.children[0]
         while True:
             fresh = child.status is not RUNNING
@@ -125,6 +137,8 @@ class Retry(Decorator):
         return status
 
     def halt(self, world: World) -> None:
+        """Reset the failure count, so a halted Retry starts its next run with every attempt;
+        then halt the child."""
         self._failures = 0
         super().halt(world)
 
@@ -148,6 +162,8 @@ class Timeout(Decorator):
         self._used = 0
 
     def tick(self, world: World) -> Status:
+        """Count this tick and tick the child; a child still RUNNING on the `ticks`-th tick is
+        halted and the answer is FAILURE. A finished child resets the count."""
         self._used += 1
         child = self.children[0]
         status = child.tick(world)
@@ -162,6 +178,7 @@ class Timeout(Decorator):
         return status
 
     def halt(self, world: World) -> None:
+        """Reset the count, so the next run gets all `ticks` again; then halt the child."""
         self._used = 0
         super().halt(world)
 

@@ -36,6 +36,9 @@ class Guard:
         self.board = board
 
     def before(self, running: bool) -> Status | None:
+        """The status the conditions decide before a tick, or None to tick the node. A node not
+        RUNNING goes through `_failureIf`, `_successIf`, `_skipIf`, then `_while` (false:
+        SKIPPED); a RUNNING one through `_while` only."""
         scripts, board = self.scripts, self.board
         if running:
             loop = scripts.get("_while")
@@ -49,6 +52,8 @@ class Guard:
         return SKIPPED if loop is not None and not loop.holds(board) else None
 
     def after(self, status: Status) -> None:
+        """Run `_onSuccess` or `_onFailure`, then `_post`, once the node has finished; nothing
+        while it is RUNNING or when it was SKIPPED."""
         name = ("_onSuccess" if status is SUCCESS else "_onFailure" if status is FAILURE
                 else None)
         if name is None:
@@ -59,6 +64,7 @@ class Guard:
             self.scripts["_post"].run(self.board)
 
     def halted(self) -> None:
+        """Run `_onHalted`; the guarded halt calls it only for a node that was RUNNING."""
         if "_onHalted" in self.scripts:
             self.scripts["_onHalted"].run(self.board)
 

@@ -19,6 +19,8 @@ STATUS_NAMES = {"SUCCESS": SUCCESS, "FAILURE": FAILURE, "RUNNING": RUNNING, "SKI
 
 
 def status_port(ports: Ports, port: str) -> Status:
+    """A port that names a status (`else`, `if_empty`) as that Status; other text is a
+    NodeError naming the node and port."""
     text = ports.text(port)
     if text not in STATUS_NAMES:
         raise NodeError(f"{ports.owner}.{port}: {text!r} is not SUCCESS, FAILURE, RUNNING "
@@ -44,6 +46,8 @@ class Repeat(Decorator):
         self._count = 0
 
     def tick(self, world: World) -> Status:
+        """Read `num_cycles` on this tick and run the cycles left (see the class). A SKIPPED
+        child is passed on, with the node itself marked RUNNING."""
         cycles = self.ports.int("num_cycles")
         child = self.children[0]
         while cycles == -1 or self._count < cycles:
@@ -66,6 +70,8 @@ class Repeat(Decorator):
         return SUCCESS
 
     def halt(self, world: World) -> None:
+        """Restart the cycle count, so the next run does all `num_cycles` again; then halt the
+        child."""
         self._count = 0
         super().halt(world)
 
@@ -77,6 +83,8 @@ class KeepRunningUntilFailure(Decorator):
     kind = "KeepRunningUntilFailure"
 
     def tick(self, world: World) -> Status:
+        """RUNNING after a child SUCCESS or SKIPPED, so the child starts again next tick; only
+        the child's FAILURE ends it."""
         status = self.children[0].tick(world)
         if status is SUCCESS or status is SKIPPED:  # BT.CPP 4.8 keeps running on a skip
             status = RUNNING
@@ -97,6 +105,8 @@ class RunOnce(Decorator):
         self._result: Status | None = None
 
     def tick(self, world: World) -> Status:
+        """Tick the child until it first finishes and remember that status; later ticks answer
+        SKIPPED or, with `then_skip` false, the remembered status. A halt does not forget it."""
         if self._result is not None:
             if self.ports.bool("then_skip"):
                 return SKIPPED
@@ -127,6 +137,8 @@ class Precondition(Decorator):
         self._running = False
 
     def tick(self, world: World) -> Status:
+        """Check the `if` script only when the child is not running: false answers `else` (read
+        on every tick) without ticking the child, true runs the child to its end."""
         otherwise = status_port(self.ports, "else")
         if not self._running and not self.script.holds(self.ports.board):
             self.status = RUNNING if otherwise is SKIPPED else otherwise
@@ -139,6 +151,8 @@ class Precondition(Decorator):
         return status
 
     def halt(self, world: World) -> None:
+        """Forget that the child was running, so the next tick checks the script again; then
+        halt the child."""
         self._running = False
         super().halt(world)
 
@@ -155,6 +169,8 @@ class Delay(Decorator):
         self._waited = -1
 
     def tick(self, world: World) -> Status:
+        """RUNNING for the first `ticks` ticks of a run, then tick the child; once the child
+        finishes, the next tick starts a new delay."""
         self._waited += 1
         if self._waited < self.ticks:
             self.status = RUNNING
@@ -166,6 +182,7 @@ class Delay(Decorator):
         return status
 
     def halt(self, world: World) -> None:
+        """Restart the delay for the next run; then halt the child."""
         self._waited = -1
         super().halt(world)
 
@@ -217,6 +234,9 @@ class Loop(Decorator):
         return items[0].strip()
 
     def tick(self, world: World) -> Status:
+        """When the child is not running, take the next queue item into `value`, then tick the
+        child: FAILURE ends the loop, anything else is RUNNING. An empty queue answers
+        `if_empty`."""
         if self.status is not RUNNING:
             self._child_running = False
         if not self._child_running:
@@ -234,6 +254,8 @@ class Loop(Decorator):
         return status
 
     def halt(self, world: World) -> None:
+        """Forget the running child, so the next tick takes a new item (and a literal queue
+        starts again); then halt the child."""
         self._child_running = False
         super().halt(world)
 
@@ -256,6 +278,9 @@ class WhenUpdated(Decorator):
         self._active = False
 
     def tick(self, world: World) -> Status:
+        """On a fresh start, compare the entry's write count with the one seen at the last
+        start: unchanged answers SKIPPED (RUNNING when `waits`) without ticking the child;
+        changed runs the child to its end."""
         if not self._active:
             seq = self.ports.board.sequence(self.ports.key("entry"))
             if seq == self._seen:
@@ -271,6 +296,8 @@ class WhenUpdated(Decorator):
         return status
 
     def halt(self, world: World) -> None:
+        """End the current run, so the next tick looks at the entry again; the write count seen
+        is kept, so a halt does not make an old write look new."""
         self._active = False
         super().halt(world)
 
@@ -293,6 +320,8 @@ class BoardRetry(Retry):
         self.ports = ports
 
     def tick(self, world: World) -> Status:
+        """Read `num_attempts` from the blackboard, then tick as Retry; failures counted so far
+        are kept, so a changed value applies to the run under way."""
         attempts = self.ports.int("num_attempts")
         self.attempts = attempts if attempts >= 1 or attempts == -1 else 1
         return super().tick(world)

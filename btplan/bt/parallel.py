@@ -43,6 +43,8 @@ class Parallel(Composite):
         return n + value + 1 if value < 0 else value
 
     def tick(self, world: World) -> Status:
+        """Tick the unfinished children and decide by the counts (see the module). A success
+        threshold above the number of children could never be met: ValueError."""
         children = self.children
         need_success = self._threshold(self.success)
         need_failure = self._threshold(self.failure)
@@ -81,6 +83,8 @@ class Parallel(Composite):
         self._successes = self._failures = 0
 
     def halt(self, world: World) -> None:
+        """Forget which children finished and the counts, so the next tick starts a fresh run;
+        then halt the children."""
         self._reset()
         super().halt(world)
 

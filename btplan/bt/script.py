@@ -337,6 +337,9 @@ class Script:
             raise ScriptSyntaxError("the script is nested too deeply", 0) from None
 
     def run(self, board: Blackboard, enums: Mapping[str, int] | None = None) -> Value:
+        """Execute the statements in order against `board` and return the last one's value
+        (0.0 for an empty script). `enums` replaces the board's enum names; a run-time error
+        (an unset entry, strings in arithmetic) is a NodeError."""
         env: Env = (board, board.enums if enums is None else enums)
         value: Value = 0.0
         for statement in self.statements:

@@ -26,6 +26,8 @@ class SubTree(Decorator):
         self.board = board
 
     def tick(self, world: World) -> Status:
+        """Tick the instance's root and pass its status on; a SKIPPED root is passed on too,
+        with the SubTree itself marked RUNNING."""
         status = self.children[0].tick(world)
         self.status = RUNNING if status is SKIPPED else status
         return status

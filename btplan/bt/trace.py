@@ -58,6 +58,8 @@ class TickTrace:
         return {n.id: n.status for n in self.nodes}
 
     def to_dict(self) -> dict[str, Any]:
+        """The trace as plain JSON values, statuses by name: what one line of a `--trace`
+        file holds."""
         return {
             "tick": self.tick,
             "status": self.status.value,
@@ -68,6 +70,7 @@ class TickTrace:
         }
 
     def to_json(self) -> str:
+        """`to_dict` as one compact JSON line; names outside ASCII are kept as they are."""
         import json  # here: a plan run records no traces and writes no JSON lines
 
         return json.dumps(self.to_dict(), separators=(",", ":"), ensure_ascii=False)
@@ -167,6 +170,8 @@ class TickRecorder:
         self.sink = sink
 
     def attach(self, tree: BehaviorTree) -> None:
+        """Record the tree's ticks from its next tick on, replacing any recorder it had; node
+        classes are swapped only during each recorded tick."""
         tree.recorder = self
 
     def detach(self, tree: BehaviorTree) -> None:
@@ -176,6 +181,7 @@ class TickRecorder:
 
     @property
     def last(self) -> TickTrace | None:
+        """The newest trace kept, or None before the first recorded tick."""
         return self.traces[-1] if self.traces else None
 
     def tick(self, tree: BehaviorTree, world: World) -> Status:

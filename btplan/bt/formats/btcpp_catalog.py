@@ -23,12 +23,16 @@ class PortSpec:
 
 @dataclass(frozen=True, slots=True)
 class BuiltinSpec:
+    """What the reader checks of one built-in node: its kind, the ports it declares and how
+    many children it takes (`max_children` None: no upper bound, 0: a leaf)."""
     kind: str  # Control, Decorator, Action, Condition, SubTree
     ports: tuple[PortSpec, ...] = ()
     min_children: int = 0
     max_children: int | None = 0
 
     def port(self, name: str) -> PortSpec | None:
+        """The declared port of that name, or None: an attribute that names no port is refused
+        with the list of ports, which is how a typo in the XML shows."""
         for port in self.ports:
             if port.name == name:
                 return port

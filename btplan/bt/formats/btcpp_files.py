@@ -42,10 +42,14 @@ class XmlDocument:
     version: int = 4
 
     def error(self, element: Element, message: str, hint: str | None = None) -> InputError:
+        """An InputError at `element`'s file, line and column, quoting that line, for the
+        caller to raise (reading stops there)."""
         return InputError(message, Span(element.path, element.line, element.column), hint,
                           line_at(self.texts.get(element.path, ""), element.line))
 
     def warn(self, element: Element, message: str) -> None:
+        """Keep a `path:line:column: message` warning about something read but not obeyed;
+        reading goes on."""
         self.warnings.append(f"{element.path}:{element.line}:{element.column}: {message}")
 
 

@@ -18,6 +18,8 @@ PORT_TAGS = {"input_port": "input", "output_port": "output", "inout_port": "inou
 
 @dataclass(frozen=True, slots=True)
 class ModelPort:
+    """One port a TreeNodesModel declares: direction, name, its attributes as written (kept
+    so the export writes them back unchanged) and its description text."""
     direction: str  # input, output, inout
     name: str
     attrs: tuple[tuple[str, str], ...]  # as written: name, type, default, ...
@@ -36,6 +38,8 @@ class ModelEntry:
     origin: str = ""  # "file", "model" or "inferred"
 
     def port_names(self) -> tuple[str, ...]:
+        """The declared port names, in order: a node a model declares (not one inferred from
+        use) may carry no other attribute."""
         return tuple(p.name for p in self.ports)
 
 

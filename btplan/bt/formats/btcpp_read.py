@@ -69,6 +69,8 @@ MAX_NESTING = 150
 
 
 def ticks(msec: int) -> int:
+    """A BT.CPP time in milliseconds as whole ticks of TICK_MS, rounded up so that a short
+    wait is not dropped: 150 ms is 2 ticks, 0 ms is none."""
     return math.ceil(msec / TICK_MS)
 
 

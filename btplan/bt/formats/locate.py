@@ -62,6 +62,8 @@ def locate(text: str, path: Sequence[str | int]) -> tuple[int, int]:
 
 
 def line_at(text: str, line: int) -> str:
+    """Line `line` (1-based) of `text`, to quote under an error; an empty string when it is
+    out of range, so a bad position never hides the error itself."""
     lines = text.splitlines()
     return lines[line - 1] if 0 < line <= len(lines) else ""
 

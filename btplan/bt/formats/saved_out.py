@@ -100,6 +100,9 @@ def _parallel() -> type[Parallel] | None:
 
 
 def tree_data(tree: BehaviorTree, with_status: bool = False) -> dict[str, Any]:
+    """The whole tree as `SavedTree.model_dump` would give it (format, version, a name other
+    than Main, root); `with_status` adds each node's last status. InputError for a node
+    btplan's JSON format cannot hold."""
     data: dict[str, Any] = {"format": FORMAT, "version": VERSION}
     if tree.name != DEFAULT_NAME:
         data["name"] = tree.name
