@@ -38,19 +38,36 @@ class DisturbableWorld(Protocol):
     executed: list[GroundAction]
     started: list[GroundAction]
 
-    def running_actions(self) -> list[GroundAction]: ...
+    def running_actions(self) -> list[GroundAction]:
+        """The robot's actions started and not yet finished, halted or failed, oldest first.
 
-    def facts(self) -> frozenset[Atom]: ...
+        `help` without arguments does the last of them for the robot.
+        """
+        ...
 
-    def set_fact(self, atom: Atom) -> None: ...
+    def facts(self) -> frozenset[Atom]:
+        """The state now; agents compare it before and after acting to say what they changed."""
+        ...
 
-    def clear_fact(self, atom: Atom) -> None: ...
+    def set_fact(self, atom: Atom) -> None:
+        """Make `atom` true at once: an external change, not an action of the robot."""
+        ...
 
-    def apply_action(self, action: GroundAction) -> None: ...
+    def clear_fact(self, atom: Atom) -> None:
+        """Make `atom` false at once; clearing an atom that does not hold changes nothing."""
+        ...
 
-    def fail_next(self, action_name: str, args: tuple[str, ...] | None = None) -> None: ...
+    def apply_action(self, action: GroundAction) -> None:
+        """Apply `action`'s effects as if someone else did it; its preconditions are not checked."""
+        ...
 
-    def ground(self, key: LeafKey) -> GroundAction: ...
+    def fail_next(self, action_name: str, args: tuple[str, ...] | None = None) -> None:
+        """Make the next tick of a matching robot action fail; `args` None matches any arguments."""
+        ...
+
+    def ground(self, key: LeafKey) -> GroundAction:
+        """The grounded action that an Action leaf's (name, arguments) key stands for."""
+        ...
 
 
 class Agent(Protocol):
@@ -62,7 +79,9 @@ class Agent(Protocol):
 
     name: str
 
-    def act(self, world: Any, tick: int) -> list[Disturbance]: ...
+    def act(self, world: Any, tick: int) -> list[Disturbance]:
+        """Change `world` before tick `tick` if this agent's time has come; [] if it did nothing."""
+        ...
 
 
 def running_action(world: DisturbableWorld) -> GroundAction | None:
@@ -91,12 +110,22 @@ class SpecAgent:
         self._rng = random.Random(seed * 1_000_003 + index)
 
     def fires(self, tick: int) -> bool:
+        """Whether the spec fires at `tick`: only on ticks its timing covers, and then by one draw.
+
+        The draw is taken on every covered tick, even at probability 1, so the stream stays
+        aligned with the tick number whatever the run did before.
+        """
         if not self.spec.when.covers(tick):
             return False
         draw = self._rng.random()
         return draw < self.spec.when.probability
 
     def act(self, world: DisturbableWorld, tick: int) -> list[Disturbance]:
+        """Carry out the spec if it fires at `tick`.
+
+        A spec with nothing to do (the fact already set, no matching action) reports nothing,
+        so traces show only real changes.
+        """
         if not self.fires(tick):
             return []
         done = getattr(self, "_" + self.spec.kind)(world)

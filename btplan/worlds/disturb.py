@@ -42,6 +42,10 @@ class When:
     probability: float = 1.0
 
     def covers(self, tick: int) -> bool:
+        """Whether `tick` lies in one of the ranges (every tick when there are none).
+
+        The chance of firing is drawn by the agent, not here, from its own seeded stream.
+        """
         if not self.ranges:
             return True
         return any(first <= tick and (last is None or tick <= last) for first, last in self.ranges)

@@ -48,6 +48,10 @@ class BlockPath(_Meddler):
         self.blocks = Atom("blocks", (obstacle, path))
 
     def meddle(self, world: Any, state: frozenset[Atom], pick: float) -> str | None:
+        """Put the obstacle on the path, taking it off whatever it stood `on`.
+
+        Nothing happens (None) while it already blocks the path or the robot holds it.
+        """
         if self.blocks in state or Atom("holding", (self.obstacle,)) in state:
             return None
         for atom in sorted(state):  # it rolls away from where it was put
@@ -66,6 +70,10 @@ class ToppleTower(_Meddler):
         super().__init__(rate, seed, 202)
 
     def meddle(self, world: Any, state: frozenset[Atom], pick: float) -> str | None:
+        """Move one tower top, chosen by `pick` in [0, 1) among them in sorted order, to the table.
+
+        None when no block stands on another. Only `on`, `on_table` and `clear` change.
+        """
         tops = sorted(a for a in state if a.predicate == "on" and Atom("clear", a.args[:1]) in state)
         if not tops:
             return None
@@ -87,6 +95,10 @@ class MovePackage(_Meddler):
         self.packages = frozenset(packages)
 
     def meddle(self, world: Any, state: frozenset[Atom], pick: float) -> str | None:
+        """Move one package to another place of its city, chosen by `pick` among all such moves.
+
+        Packages in a vehicle are not `at` a place and stay put; None when nothing can move.
+        """
         city = {a.args[0]: a.args[1] for a in state if a.predicate == "in_city"}
         moves = []
         for a in sorted(state):

@@ -122,6 +122,11 @@ class SymbolicWorld:
     # --- btplan.bt.World ---------------------------------------------------------------
 
     def check(self, key: LeafKey) -> bool:
+        """A condition holds when its atom is in the state.
+
+        `=` compares its two arguments instead, and a `_` argument matches any atom of the
+        predicate (`blocks(_, t)`: something blocks t).
+        """
         predicate, args = key
         if predicate == EQUALITY:
             return len(args) == 2 and args[0] == args[1]
@@ -131,12 +136,20 @@ class SymbolicWorld:
         return key in self._state
 
     def start(self, key: LeafKey) -> Status:
+        """Begin the action and count down its `duration` ticks.
+
+        A one-tick action finishes, or fails, on this very tick.
+        """
         action = self.ground(key)
         self.started.append(action)
         self._remaining[key] = action.duration
         return self._advance(key, action)
 
     def step(self, key: LeafKey) -> Status:
+        """One more tick of a running action; its effects apply on its last tick.
+
+        An action stepped without a start (a tree rebuilt mid-action) is started here.
+        """
         action = self.ground(key)
         if key not in self._remaining:
             # Stepped without a start (a tree built mid-action): treat it as a start.
@@ -145,6 +158,7 @@ class SymbolicWorld:
         return self._advance(key, action)
 
     def halt(self, key: LeafKey) -> None:
+        """Drop a running action with none of its effects; halting one not running does nothing."""
         if self._remaining.pop(key, None) is not None:
             self.halted.append(self.ground(key))
 

@@ -95,11 +95,20 @@ class SceneAgents:
     pusher: Pusher | None = None
 
     def bind(self, state: SceneState, check: Check) -> None:
+        """Attach to the scene state and the world's `check`, once the world exists.
+
+        A pusher is built only when some event moves or removes a cube: it is one more body
+        for the physics to step.
+        """
         self.state, self.check = state, check
         if any(e.event.do in ("move", "remove") for e in self.events):
             self.pusher = Pusher(state)
 
     def act(self, world: object, tick: int) -> list[Disturbance]:
+        """Fire the events due at `tick`, and report the pushes that ended since the last tick.
+
+        `world` is not used (the bound state is); before `bind`, nothing happens.
+        """
         if self.state is None or self.check is None:
             return []
         state, check = self.state, self.check
@@ -193,6 +202,11 @@ class Shove:
         self.pusher: Pusher | None = None
 
     def act(self, world: object, tick: int) -> list[Disturbance]:
+        """Perhaps start a push of a loose cube at `tick`; report the pushes that ended.
+
+        The three draws come first, so the stream stays aligned whether or not a push starts;
+        a world without a PyBullet scene state is left alone.
+        """
         fire, pick, spot_seed = self.rng.random(), self.rng.random(), self.rng.random()
         state = getattr(world, "state", None)
         if not isinstance(state, SceneState):

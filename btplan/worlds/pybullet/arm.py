@@ -54,6 +54,10 @@ def obstacles(state: SceneState, *ignored: str | None) -> list[int]:
 
 
 def solve(state: SceneState, timings: Timings, target: Sequence[float], yaw: float) -> Q | None:
+    """IK for the finger tip at `target` (metres, world frame), hand down, turned by `yaw`.
+
+    None when it is out of reach; the wall time goes to `timings.ik`.
+    """
     began = time.perf_counter()
     try:
         return state.sim.robot.solve_ik(target, yaw)
@@ -120,6 +124,11 @@ def distance(a: Q, b: Q) -> float:
 
 
 def straight_free(start: Q, goal: Q, free: Callable[[Q], bool]) -> bool:
+    """Whether the straight joint-space move from `start` to `goal` stays free.
+
+    `free` is asked every CHECK_STEP radians of the largest joint's change; both ends are
+    left out (the arm is at the start, and callers check the goal themselves).
+    """
     steps = max(1, math.ceil(max(abs(a - b) for a, b in zip(start, goal)) / CHECK_STEP))
     return all(free(tuple(a + (b - a) * k / steps for a, b in zip(start, goal)))
                for k in range(1, steps))
@@ -231,6 +240,7 @@ def drive(state: SceneState, goal: Pose2, speed: float) -> Motion:
 
 
 def opened(state: SceneState) -> Motion:
+    """Let go of any grasp and open the fingers, for at most half a second; always True."""
     state.sim.robot.open()
     return (yield from fingers(state, OPEN))
 

@@ -31,6 +31,10 @@ class Conditions:
         they caused (bench/sim.py reports those apart)."""
 
     def check(self, key: Key) -> bool:
+        """Measure one condition on the scene now, with no stored state, timed into `seconds`.
+
+        A predicate the world has no measure for raises WorldError.
+        """
         return self._timed(lambda: self._check(key))
 
     def _check(self, key: Key) -> bool:

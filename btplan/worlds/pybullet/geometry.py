@@ -13,6 +13,7 @@ DIRECTIONS = 16
 
 
 def distance(a: Point | Pose2, b: Point | Pose2) -> float:
+    """Distance in the floor plane, in metres; z and yaw are ignored, so poses and points mix."""
     return math.hypot(a[0] - b[0], a[1] - b[1])
 
 

@@ -84,6 +84,7 @@ class Work:
         return self.used > self.limit
 
     def condition(self) -> Any:
+        """This counter as the PlannerTerminationCondition that OMPL's solve and simplify take."""
         return _ompl("base").PlannerTerminationCondition(self)
 
 
@@ -193,6 +194,7 @@ def densify(
 
 
 def path_length(path: tuple[Pose2, ...]) -> float:
+    """The length of the path in the plane, in metres (yaw ignored); 0 for fewer than two poses."""
     return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in itertools.pairwise(path))
 
 

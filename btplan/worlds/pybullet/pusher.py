@@ -111,6 +111,7 @@ class Pusher:
 
     @property
     def busy(self) -> bool:
+        """Whether a push is under way or queued: Shove starts no new one until it is not."""
         return self.push is not None or bool(self.jobs)
 
     def news(self) -> list[str]:
@@ -194,6 +195,11 @@ class Pusher:
     # --- control, before every physics step ----------------------------------------------
 
     def control(self) -> None:
+        """Set the pusher's velocity for the next physics step (it is one of `sim.controllers`).
+
+        The next queued job starts once the current push is backing off or driving out;
+        otherwise the push's phase says whether to drive, turn or push.
+        """
         if self.jobs and (self.push is None or self.push.phase in ("back", "out")):
             self._start()                    # the next job, from wherever the pusher is
         if self.push is None:

@@ -22,14 +22,20 @@ from btplan.io import output_mode, write_bytes_atomic  # a normal file's mode, r
 
 
 class Camera(Protocol):
-    def snapshot(self, width: int, height: int) -> tuple[int, int, bytes]: ...
+    """Whatever takes pictures of a scene: the simulation of either PyBullet world."""
+
+    def snapshot(self, width: int, height: int) -> tuple[int, int, bytes]:
+        """An RGBA picture as (width, height, pixels), four bytes a pixel."""
+        ...
 
 
 class Scene(Protocol):
     """What the recorder films: any scene state whose simulation can take a picture."""
 
     @property
-    def sim(self) -> Camera: ...
+    def sim(self) -> Camera:
+        """The simulation that takes the pictures."""
+        ...
 
 FORMATS = (".gif", ".mp4")
 
@@ -76,6 +82,10 @@ class Recorder:
         return movie
 
     def save(self) -> None:
+        """Finish the file: an MP4 is closed and renamed into place, a GIF written atomically.
+
+        A run that kept no frame writes no file at all.
+        """
         if self._movie is not None and self._temporary is not None:
             self._movie.close()
             target = Path(self.path)

@@ -102,6 +102,7 @@ class Robot:
     # --- the arm -------------------------------------------------------------------------
 
     def joints(self) -> tuple[float, ...]:
+        """The seven arm joints' angles (radians) as the physics has them, not the targets."""
         states = self.p.getJointStates(self.arm, list(ARM), physicsClientId=self.client)
         return tuple(float(s[0]) for s in states)
 
@@ -122,6 +123,10 @@ class Robot:
         return tuple(float(s[0]) for s in states), tuple(float(s[1]) for s in states)
 
     def restore(self, state: tuple[tuple[float, ...], tuple[float, ...]]) -> None:
+        """Put the arm back as `arm_state` saw it, joint speeds included.
+
+        A collision check in the middle of a motion thus leaves the motion going.
+        """
         self.set_arm(*state)
 
     def command(self, q: Sequence[float]) -> None:
@@ -132,22 +137,35 @@ class Robot:
                                     positionGains=[0.3] * 7, physicsClientId=self.client)
 
     def fingers(self, width: float) -> None:
+        """Position target for each finger, in metres of its travel (OPEN 0.04, SHUT 0).
+
+        Reached as the physics steps, pressing with at most FINGER_FORCE newtons.
+        """
         p = self.p
         p.setJointMotorControlArray(self.arm, list(FINGERS), p.POSITION_CONTROL,
                                     targetPositions=[width, width], forces=[FINGER_FORCE] * 2,
                                     physicsClientId=self.client)
 
     def finger_width(self) -> float:
+        """How far the fingers are apart, in metres: both joints' travel summed (0.08 wide open)."""
         states = self.p.getJointStates(self.arm, list(FINGERS), physicsClientId=self.client)
         return float(states[0][0] + states[1][0])
 
     def tip(self) -> tuple[float, float, float]:
+        """The grasp point between the finger pads, world frame, metres.
+
+        Forward kinematics of the joints as they are, so it is correct just after `set_arm` too.
+        """
         state = self.p.getLinkState(self.arm, TIP, computeForwardKinematics=True,
                                     physicsClientId=self.client)
         x, y, z = state[4]
         return (float(x), float(y), float(z))
 
     def tip_yaw(self) -> float:
+        """The hand's turn about the vertical, world frame, radians.
+
+        A put-down lowers the cube with the yaw it was grasped with.
+        """
         state = self.p.getLinkState(self.arm, TIP, computeForwardKinematics=True,
                                     physicsClientId=self.client)
         return float(self.p.getEulerFromQuaternion(state[5])[2])
@@ -244,6 +262,10 @@ class Robot:
                                    physicsClientId=self.client)
 
     def open(self) -> None:
+        """Remove the grasp constraint and command the fingers open.
+
+        A held cube falls as the physics steps; nothing waits for the fingers here.
+        """
         self.detach()
         self.fingers(OPEN)
 

@@ -45,6 +45,10 @@ class Routes:
         measured now (planned from elsewhere), so that they do not flicker as the robot moves."""
 
     def new_trajectory(self, target: str) -> str:
+        """Name a new trajectory to `target` (`traj1`, `traj2`, ...) and plan it from here.
+
+        The name is the value RefineActions gives the planner; the path behind it may change.
+        """
         name = f"traj{next(self._counter)}"
         self.state.trajectories[name] = Trajectory(name, target)
         self.prepare(name)

@@ -64,11 +64,16 @@ class Region:
     color: tuple[float, float, float] = (0.9, 0.9, 0.2)
 
     def contains(self, x: float, y: float, margin: float = 0.0) -> bool:
+        """Whether (x, y) lies inside, at least `margin` metres from every edge.
+
+        A negative margin widens it: the samplers keep spots to put things aside that far off.
+        """
         return (self.low[0] + margin <= x <= self.high[0] - margin
                 and self.low[1] + margin <= y <= self.high[1] - margin)
 
     @property
     def center(self) -> Point:
+        """The middle of the region: the point `near(region)` is measured to."""
         return ((self.low[0] + self.high[0]) / 2, (self.low[1] + self.high[1]) / 2)
 
 
@@ -116,6 +121,7 @@ class Scene:
     near: float = 0.7
 
     def region(self, name: str) -> Region | None:
+        """The region called `name`, or None (a cube, a sampled pose, or no such thing)."""
         return next((r for r in self.regions if r.name == name), None)
 
 

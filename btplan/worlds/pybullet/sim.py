@@ -161,12 +161,14 @@ class Sim:
         return int(p.createMultiBody(0.0, shape, -1, [0.0, 0.0, PARKED_Z], physicsClientId=self.client))
 
     def close(self) -> None:
+        """Disconnect from PyBullet; a client already gone is no error (failed runs close too)."""
         with contextlib.suppress(Exception):
             self.p.disconnect(physicsClientId=self.client)
 
     # --- poses ---------------------------------------------------------------------------
 
     def set_robot(self, pose: Pose2) -> None:
+        """Teleport the base to `pose` (a held cube comes along) and forget what was read."""
         self.robot.set_base(pose)
         self.moved()
 
@@ -181,6 +183,10 @@ class Sim:
 
     @property
     def pose(self) -> Pose2:
+        """The base's pose (x, y in metres, yaw in radians) as last set.
+
+        The base is moved kinematically, so this is exact, never read back from the physics.
+        """
         return self.robot.pose
 
     def step(self) -> None:
@@ -227,6 +233,10 @@ class Sim:
                                  [0, 0, 0], physicsClientId=self.client)
 
     def cube_position(self, name: str) -> tuple[float, float, float]:
+        """A cube's centre, world frame, metres; read from PyBullet once per physics step.
+
+        A cube out of the scene is parked far below the floor (z = PARKED_Z).
+        """
         known = self._positions.get(name)
         if known is None:
             pos, _ = self.p.getBasePositionAndOrientation(self.cubes[name],
@@ -235,10 +245,12 @@ class Sim:
         return known
 
     def cube_yaw(self, name: str) -> float:
+        """A cube's turn about the vertical, in radians (only grasps ask, so it is not cached)."""
         _, orn = self.p.getBasePositionAndOrientation(self.cubes[name], physicsClientId=self.client)
         return float(self.p.getEulerFromQuaternion(orn)[2])
 
     def cube_speed(self, name: str) -> float:
+        """A cube's speed in m/s, read once per physics step (`resting` asks for each cube)."""
         key = ("speed", name)
         known = self.memo.get(key)
         if not isinstance(known, float):
@@ -247,6 +259,7 @@ class Sim:
         return known
 
     def gripper_point(self) -> Point:
+        """The finger tip's position projected on the floor (x, y, metres)."""
         x, y, _ = self.robot.tip()
         return (x, y)
 
@@ -290,6 +303,7 @@ class Sim:
         return (float(pos[0]), float(pos[1]), half, half) if pos[2] > -1 else (1e9, 1e9, 0, 0)
 
     def in_bounds(self, x: float, y: float, radius: float) -> bool:
+        """Whether a disc of `radius` metres at (x, y) lies within the bounds; 0 tests the point."""
         x0, x1, y0, y1 = self.scene.bounds
         return x0 + radius <= x <= x1 - radius and y0 + radius <= y <= y1 - radius
 

@@ -74,9 +74,11 @@ class SkillWorld(Generic[StateT, ConditionsT]):
     # --- conditions ----------------------------------------------------------------------
 
     def check(self, key: Key) -> bool:
+        """Asked of this world's conditions, which measure the scene now and keep no state."""
         return self.conditions.check(key)
 
     def facts(self) -> frozenset[Atom]:
+        """The whole state as the planner sees it, measured by this world's conditions."""
         return self.conditions.facts()
 
     # --- actions -------------------------------------------------------------------------
@@ -94,6 +96,11 @@ class SkillWorld(Generic[StateT, ConditionsT]):
         return instantiate(template, key[1])
 
     def start(self, key: Key) -> Status:
+        """Log the action as started and run its skill's first tick at once.
+
+        FAILURE, with the reason "it cannot start here", when the world has no skill that can
+        begin it now (a trajectory it does not know, say).
+        """
         action = self.ground(key)
         self.started.append(action)
         skill = self._skill(key)
@@ -105,6 +112,10 @@ class SkillWorld(Generic[StateT, ConditionsT]):
         return self.step(key)
 
     def step(self, key: Key) -> Status:
+        """Run one tick of the action's skill; FAILURE when none runs for it (halted or ended).
+
+        An outcome is logged (a failure with its reason), and the recorder gets a labelled frame.
+        """
         skill = self.running.get(key)
         if skill is None:
             return FAILURE
@@ -122,6 +133,7 @@ class SkillWorld(Generic[StateT, ConditionsT]):
         return status
 
     def halt(self, key: Key) -> None:
+        """Stop the action's skill, which leaves the robot safe; a key not running is ignored."""
         skill = self.running.pop(key, None)
         if skill is not None:
             self.halted.append(self.ground(key))

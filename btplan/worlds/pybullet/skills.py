@@ -32,12 +32,18 @@ SAFE_SECONDS = 3.0    # the longest a halted skill may take to fold the arm
 
 
 class Skill(Protocol):
+    """What runs an action leaf: stepped once per tick until it stops answering RUNNING."""
+
     reason: str
     """Why the skill failed, when it knows ('' otherwise): read once it returned FAILURE."""
 
-    def step(self) -> Status: ...
+    def step(self) -> Status:
+        """Run one tick of the skill: RUNNING, or its outcome, repeated if it is stepped again."""
+        ...
 
-    def halt(self) -> None: ...
+    def halt(self) -> None:
+        """Stop the skill before it ends, leaving the robot safe and the world consistent."""
+        ...
 
 
 class Scripted:
@@ -51,6 +57,11 @@ class Scripted:
         self.reason = ""
 
     def step(self) -> Status:
+        """Run `substeps` physics steps, the script looking at the scene after each.
+
+        Once the script returns, its outcome (and a failure's reason, from the state) is kept
+        and answered on every later step.
+        """
         if self.done is not None:
             return self.done
         sim = self.state.sim
@@ -103,6 +114,7 @@ def settle(state: SceneState, timings: Timings) -> None:
 
 
 def facing(state: SceneState, at: Point) -> float:
+    """The yaw (radians) that turns the base, where it stands, towards `at`."""
     x, y, _ = state.base
     return math.atan2(at[1] - y, at[0] - x)
 
@@ -160,6 +172,7 @@ def pick(state: SceneState, timings: Timings, cube: str) -> Script:
 
 
 def moved(state: SceneState, cube: str, at: tuple[float, float, float]) -> bool:
+    """Whether `cube` left the scene or is over 1.5 cm from `at` (taken while the arm reached)."""
     return not state.present(cube) or math.dist(state.sim.cube_position(cube), at) > 0.015
 
 

@@ -63,6 +63,7 @@ class SceneState:
 
     @property
     def base(self) -> Pose2:
+        """The base's pose: x, y in metres and yaw in radians, in the world frame."""
         return self.sim.pose
 
     @property
@@ -112,6 +113,10 @@ class SceneState:
                 len(self.missed_drops))
 
     def check_objects(self) -> None:
+        """Refuse a problem location that is no cube or region of the scene, nor a pose object.
+
+        Checked before the simulation starts, with the scene file's name in the error.
+        """
         known = set(self.cube_names) | {r.name for r in self.scene.regions}
         poses = set(self.task.objects_of(self.type_of("pose")))
         for name in self.task.objects_of(self.type_of("location")):
@@ -121,6 +126,7 @@ class SceneState:
                                  "add it as a [[cube]] or a [[region]]")
 
     def type_of(self, wanted: str) -> str:
+        """`wanted` if the domain declares that type, else `object`: a domain may leave it out."""
         return wanted if wanted in self.task.domain.type_parents else "object"
 
     def present(self, name: str) -> bool:
@@ -155,6 +161,11 @@ class SceneState:
         raise WorldError(f"{name!r} is not a cube, region or pose of this scene")
 
     def is_near(self, name: str) -> bool:
+        """Whether the base is within `near` metres of the location, in the plane.
+
+        A cube out of the scene is never near, nor one the arm just failed to reach from here
+        and that has not moved since (so the tree drives up to it again).
+        """
         if name in self.sim.cubes and not self.present(name):
             return False
         at = self.location(name)
@@ -203,6 +214,7 @@ class SceneState:
         return False
 
     def move_base(self, pose: Pose2) -> None:
+        """Put the base at `pose`, kinematically; drives call it on every physics substep."""
         self.sim.set_robot(pose)
 
     def released(self, cube: str) -> None:
@@ -232,6 +244,11 @@ class SceneState:
         return (self.held, self.handled)
 
     def on_path(self, cube: str, path: tuple[Pose2, ...], start: int) -> bool:
+        """Whether the robot's disc touches `cube` on `path` from waypoint `start` on.
+
+        Every second waypoint and the last are tested; False for an empty path or a cube out
+        of the scene. Answers are kept per path object and rounded cube position.
+        """
         if not path or not self.present(cube):
             return False
         position = self.sim.cube_position(cube)
@@ -295,9 +312,14 @@ class SceneState:
         return found
 
     def blockers(self, traj: Trajectory) -> set[str]:
+        """The cubes on the path, as `path_blockers` from its start.
+
+        A trajectory with no path reports "(no path)" instead: never taken for a free one.
+        """
         if not traj.path:
             return {"(no path)"}
         return self.path_blockers(traj)
 
     def close(self) -> None:
+        """Disconnect the simulation; the state is unusable afterwards."""
         self.sim.close()

@@ -44,6 +44,11 @@ class Watch:
     done: bool = False
 
     def ready(self, check: Check, tick: int) -> bool:
+        """Whether the event fires at `tick`; never again once it is done.
+
+        It is due at its tick, or `delay` ticks after its `when` literal became true for the
+        `count`-th time (changes from false to true are counted, not ticks spent true).
+        """
         if self.done:
             return False
         if self.due is None and self.event.tick is not None:
@@ -68,6 +73,10 @@ class AssemblyAgents:
     name: str = "scene"
 
     def act(self, world: object, tick: int) -> list[Disturbance]:
+        """Fire every event due at `tick`, each only once.
+
+        `world` is not used: the agent was built on the scene state and the world's `check`.
+        """
         happened = []
         for watch in self.watches:
             if watch.ready(self.check, tick):
@@ -76,6 +85,11 @@ class AssemblyAgents:
         return happened
 
     def apply(self, event: Event) -> str:
+        """Lay the event's part in its place: turned over for `flip`, as it faces for `knock`.
+
+        A place below the table takes it at its centre, on the floor; a table place needs a
+        free spot, or nothing happens. A grip on the part is let go. Returns what happened.
+        """
         state = self.state
         face = state.face(event.part) or "up"
         if event.do == "flip":
@@ -90,6 +104,10 @@ class AssemblyAgents:
 
 
 def assembly_agents(state: AssemblyState, check: Check) -> AssemblyAgents:
+    """The scene's events as one agent, watching `when` literals through `check`.
+
+    A literal that cannot be read is an InputError naming the scene file.
+    """
     events = state.scene.events
     watches = [Watch(e, literal(e.when, state.scene.path) if e.when else None) for e in events]
     return AssemblyAgents(state, check, watches)

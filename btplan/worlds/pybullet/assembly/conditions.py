@@ -28,6 +28,11 @@ class AssemblyConditions:
         self.static = frozenset(a for a in task.initial_state if a.predicate not in MEASURED)
 
     def check(self, key: Key) -> bool:
+        """Measure `lies`, `holds`, `free` or `mounted` on the scene now.
+
+        Fixtures are always mounted; any other predicate is a static fact of the problem. A
+        measured predicate with the wrong number of arguments raises WorldError.
+        """
         state = self.state
         name, args = key
         if name == "lies" and len(args) == 3:
@@ -43,6 +48,11 @@ class AssemblyConditions:
         return Atom(name, args) in self.static
 
     def facts(self) -> frozenset[Atom]:
+        """The static facts and every measured one that holds now.
+
+        A part in the air or on the fixture lies nowhere; an arm gripping a part that is still
+        on the table is `free`, since it does not hold it yet.
+        """
         state = self.state
         found = set(self.static)
         found.update(Atom("mounted", (f,)) for f in state.fixtures)

@@ -14,16 +14,22 @@ IDENTITY: Quat = (0.0, 0.0, 0.0, 1.0)
 
 
 def axis_x(q: Quat) -> Vec:
+    """The frame's x axis in world coordinates (the rotation matrix's first column).
+
+    For a part, the direction of its length.
+    """
     x, y, z, w = q
     return (1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w))
 
 
 def axis_y(q: Quat) -> Vec:
+    """The frame's y axis in world coordinates (the second column): across a part's width."""
     x, y, z, w = q
     return (2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w))
 
 
 def axis_z(q: Quat) -> Vec:
+    """The frame's z axis in world coordinates (the third column); `rotate` uses all three."""
     x, y, z, w = q
     return (2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y))
 
@@ -44,10 +50,12 @@ def multiply(a: Quat, b: Quat) -> Quat:
 
 
 def inverse(q: Quat) -> Quat:
+    """The opposite rotation of a unit quaternion (its conjugate); only right for length 1."""
     return (-q[0], -q[1], -q[2], q[3])
 
 
 def rotate(q: Quat, v: Vec) -> Vec:
+    """`v`, given in the frame `q` describes, expressed in world coordinates."""
     ex, ey, ez = axis_x(q), axis_y(q), axis_z(q)
     return (ex[0] * v[0] + ey[0] * v[1] + ez[0] * v[2],
             ex[1] * v[0] + ey[1] * v[1] + ez[1] * v[2],
@@ -55,6 +63,7 @@ def rotate(q: Quat, v: Vec) -> Vec:
 
 
 def cross(a: Vec, b: Vec) -> Vec:
+    """The cross product a x b (right-handed): perpendicular to both, |a||b| sin(angle) long."""
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 

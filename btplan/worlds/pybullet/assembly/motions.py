@@ -43,6 +43,11 @@ def obstacles(state: AssemblyState, arm: str, *handled: str) -> list[int]:
 
 def solve(state: AssemblyState, timings: Timings, arm: str, target: Vec,
           orientation: Quat, near: Q | None = None) -> Q | None:
+    """IK for `arm`'s tip at `target` (metres, world frame), the hand turned as `orientation`.
+
+    None when out of reach. `near` keeps the answer close to those joints (short straight
+    moves); the wall time goes to `timings.ik`.
+    """
     began = time.perf_counter()
     try:
         return state.arm(arm).solve_ik(target, orientation, near)
@@ -144,6 +149,7 @@ def close_on(state: AssemblyState, arm: str, part: str) -> Motion:
 
 
 def open_hand(state: AssemblyState, arm: str) -> Motion:
+    """Let go and open the fingers, for at most 0.3 s, until they are nearly wide open; True."""
     panda = state.arm(arm)
     panda.open()
     state.sim.moved()
@@ -155,6 +161,7 @@ def open_hand(state: AssemblyState, arm: str) -> Motion:
 
 
 def at_home(state: AssemblyState, arm: str) -> bool:
+    """Whether every joint is within 3 * AT radians of HOME: then `go_home` has nothing to do."""
     return max(abs(x - y) for x, y in zip(state.arm(arm).joints(), HOME)) < 3 * AT
 
 
@@ -192,6 +199,7 @@ def go_home(state: AssemblyState, timings: Timings, arm: str) -> Motion:
 
 
 def pause(seconds: float) -> Motion:
+    """Let the physics run for `seconds` with no command (a part let go lands); always True."""
     for _ in range(int(seconds * HZ)):
         yield
     return True

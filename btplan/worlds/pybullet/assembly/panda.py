@@ -67,6 +67,7 @@ class Panda:
     # --- joints --------------------------------------------------------------------------
 
     def joints(self) -> Q:
+        """The seven arm joints' angles (radians) as the physics has them, not the targets."""
         states = self.p.getJointStates(self.body, list(ARM), physicsClientId=self.client)
         return tuple(float(s[0]) for s in states)
 
@@ -76,18 +77,27 @@ class Panda:
             self.p.resetJointState(self.body, joint, value, physicsClientId=self.client)
 
     def command(self, q: Sequence[float]) -> None:
+        """Joint position targets (radians) for the arm, reached as the physics steps.
+
+        Forces and gains are the mobile arm's, so both worlds' arms move alike.
+        """
         p = self.p
         p.setJointMotorControlArray(self.body, list(ARM), p.POSITION_CONTROL,
                                     targetPositions=list(q), forces=list(FORCES),
                                     positionGains=[0.3] * 7, physicsClientId=self.client)
 
     def fingers(self, width: float) -> None:
+        """Position target per finger, in metres of travel (OPEN 0.04, SHUT 0).
+
+        Reached as the physics steps, pressing with at most FINGER_FORCE newtons.
+        """
         p = self.p
         p.setJointMotorControlArray(self.body, list(FINGERS), p.POSITION_CONTROL,
                                     targetPositions=[width, width], forces=[FINGER_FORCE] * 2,
                                     physicsClientId=self.client)
 
     def finger_width(self) -> float:
+        """How far the fingers are apart, in metres: both joints' travel summed (0.08 wide open)."""
         states = self.p.getJointStates(self.body, list(FINGERS), physicsClientId=self.client)
         return float(states[0][0] + states[1][0])
 
@@ -177,10 +187,15 @@ class Panda:
         return True
 
     def detach(self) -> None:
+        """Remove the grasp constraint, if any, and give the fingers back their contacts with it."""
         release(self.p, self.client, self.body, self.grip, self.gripped)
         self.grip = self.gripped = None
 
     def open(self) -> None:
+        """Let go: remove the grasp and command the fingers open.
+
+        The part stays or falls as the physics decides; nothing waits for the fingers here.
+        """
         self.detach()
         self.fingers(OPEN)
 

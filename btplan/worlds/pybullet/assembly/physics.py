@@ -67,6 +67,10 @@ class AssemblyPhysics:
         self.names = {body: name for name, body in self.parts.items()}
 
     def box(self, center: Vec, size: Vec, color: Vec, solid: bool = True) -> int:
+        """A fixed box at `center` with full side lengths `size` (metres).
+
+        `solid=False` makes it visual only: the places' markings on the table top.
+        """
         p, c = self.p, self.client
         half = [s / 2 for s in size]
         shape = p.createCollisionShape(p.GEOM_BOX, halfExtents=half, physicsClientId=c) \
@@ -94,6 +98,10 @@ class AssemblyPhysics:
     # --- time ----------------------------------------------------------------------------
 
     def step(self) -> None:
+        """One physics step of 1/240 s, its wall time kept for the statistics.
+
+        What was read of the scene (part poses) is forgotten: it may have changed.
+        """
         began = time.perf_counter()
         self.p.stepSimulation(physicsClientId=self.client)
         self.physics_seconds += time.perf_counter() - began
@@ -128,6 +136,7 @@ class AssemblyPhysics:
         self.moved()
 
     def speed(self, name: str) -> float:
+        """A part's linear speed in m/s, read fresh each time (it is not kept per step)."""
         linear, _ = self.p.getBaseVelocity(self.parts[name], physicsClientId=self.client)
         return math.sqrt(sum(float(v) ** 2 for v in linear))
 
@@ -140,5 +149,6 @@ class AssemblyPhysics:
                       width, height)
 
     def close(self) -> None:
+        """Disconnect from PyBullet; a client already gone is no error (failed runs close too)."""
         with contextlib.suppress(Exception):
             self.p.disconnect(physicsClientId=self.client)

@@ -49,10 +49,15 @@ class Place:
     below: bool = False
 
     def contains(self, x: float, y: float) -> bool:
+        """Whether (x, y) lies in the place's rectangle, edges included; height is not looked at."""
         return self.low[0] <= x <= self.high[0] and self.low[1] <= y <= self.high[1]
 
     @property
     def center(self) -> Point:
+        """The middle of the place: where a part knocked below the table lands.
+
+        Free spots of a table place are tried nearest it first.
+        """
         return ((self.low[0] + self.high[0]) / 2, (self.low[1] + self.high[1]) / 2)
 
 
@@ -99,9 +104,11 @@ class AssemblyScene:
     tick_seconds: float = 0.1
 
     def place(self, name: str) -> Place | None:
+        """The place called `name`, or None when the scene has no such place."""
         return next((p for p in self.places if p.name == name), None)
 
     def part(self, name: str) -> PartSpec | None:
+        """The part called `name`, or None when the scene has no such part."""
         return next((p for p in self.parts if p.name == name), None)
 
 

@@ -50,6 +50,11 @@ class Scripted:
         self.reason = ""  # these skills give no reason for a failure
 
     def step(self) -> Status:
+        """Run the tick's physics steps; SUCCESS the moment `done` is measured true.
+
+        `done` is read after every step and after the script acts on it. A script that ends
+        without `done` holding counts as FAILURE; the outcome is repeated on later steps.
+        """
         if self.status is not None:
             return self.status
         # `done` is read after the physics moved and again after the script acted (it may
@@ -77,6 +82,7 @@ class Scripted:
         return self.status is SUCCESS
 
     def halt(self) -> None:
+        """Stop the script; if the action had not ended, let go of parts not held off the table."""
         self.script.close()
         if self.status is None:
             self.on_halt()
@@ -266,8 +272,10 @@ def take_options(state: AssemblyState, part: str, pose: tuple[Vec, Quat], held_a
 
 
 def add(a: Vec, b: Vec) -> Vec:
+    """The sum a + b: a point moved by an offset (metres, world frame)."""
     return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
 
 
 def sub(a: Vec, b: Vec) -> Vec:
+    """The difference a - b: the offset from point b to point a (metres, world frame)."""
     return (a[0] - b[0], a[1] - b[1], a[2] - b[2])

@@ -75,6 +75,7 @@ class AssemblyState:
         self.sim.set_part(part, (at[0], at[1], height + self.size[part][2] / 2 + 0.001), turn)
 
     def place(self, name: str) -> Place:
+        """The place called `name`; a name the scene lacks raises WorldError."""
         place = self.scene.place(name)
         if place is None:
             raise WorldError(f"{name!r} is not a place of the scene {self.scene.path}")
@@ -82,14 +83,20 @@ class AssemblyState:
 
     @property
     def seconds(self) -> float:
+        """Simulated time in seconds: the physics steps taken so far, at 240 Hz."""
         return self.sim.steps / HZ
 
     def arm(self, name: str) -> Panda:
+        """The Panda called `name` (the problem's arms were checked against the scene at start)."""
         return self.sim.arms[name]
 
     # --- a part's pose -------------------------------------------------------------------
 
     def pose(self, part: str) -> tuple[Vec, Quat]:
+        """A part's position (metres) and orientation (quaternion x, y, z, w), world frame.
+
+        Read from PyBullet once per physics step.
+        """
         return self.sim.pose(part)
 
     def opening(self, part: str) -> Vec:
@@ -98,6 +105,10 @@ class AssemblyState:
         return (float(m[2]), float(m[5]), float(m[8]))
 
     def face(self, part: str) -> str | None:
+        """`up` or `down` when the opening points within about 25 degrees of vertical, else None.
+
+        A part lying on its side, or tilted in a hand, faces neither way.
+        """
         z = self.opening(part)[2]
         return "up" if z >= UPRIGHT else "down" if z <= -UPRIGHT else None
 
@@ -119,6 +130,10 @@ class AssemblyState:
                     None)
 
     def over_fixture(self, part: str) -> bool:
+        """Whether the part is above the fixture's top, within ON_STACK metres of its centre.
+
+        Held or not: `mounted` and `stack_top` add what else they need.
+        """
         (x, y, z), _ = self.pose(part)
         fx, fy, top = self.scene.fixture
         return math.hypot(x - fx, y - fy) <= ON_STACK and z > top
@@ -172,4 +187,5 @@ class AssemblyState:
         return "away" if sum(x * y for x, y in zip(a, o)) < 0 else "toward"
 
     def close(self) -> None:
+        """Disconnect the simulation; the state is unusable afterwards."""
         self.sim.close()

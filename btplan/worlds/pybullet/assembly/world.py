@@ -41,6 +41,10 @@ class AssemblyWorld(SkillWorld[AssemblyState, AssemblyConditions]):
         self.settle(1.0)  # parts laid out a millimetre above the table come to rest
 
     def settle(self, seconds: float) -> None:
+        """Step the physics for `seconds` of simulated time with no skill running.
+
+        At start-up, parts laid out a millimetre above the table come to rest.
+        """
         for _ in range(int(seconds * HZ)):
             self.state.sim.step()
 
@@ -78,6 +82,10 @@ class AssemblyWorld(SkillWorld[AssemblyState, AssemblyConditions]):
     # --- lifecycle -----------------------------------------------------------------------
 
     def stats(self) -> dict[str, float]:
+        """Simulated time, physics steps and the arms' IK and planning effort so far.
+
+        For the run's closing note; there is no base to plan for here.
+        """
         return {
             "sim_seconds": round(self.sim_seconds, 3),
             "action_ticks": self.action_ticks,
@@ -90,4 +98,5 @@ class AssemblyWorld(SkillWorld[AssemblyState, AssemblyConditions]):
         }
 
     def scene_agents(self) -> list[AssemblyAgents]:
+        """The scene's events, as one agent acting before each tick."""
         return [self.agents]
