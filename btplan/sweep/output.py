@@ -57,7 +57,7 @@ def _pyarrow() -> None:
 
 def sort_rows(rows: Sequence[Row]) -> list[Row]:
     """The rows by scenario, method, rate and seed (numbers compared as numbers), so that the
-    output is the same however the workers finished."""
+    output is the same in whatever order the parallel runs finished."""
     return sorted(rows, key=lambda r: (r["scenario"], r["method"], float(r["rate"]),
                                        int(r["seed"])))
 
