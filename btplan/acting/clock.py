@@ -21,18 +21,24 @@ __all__ = ["Clock", "FakeClock", "SystemClock"]
 class Clock(Protocol):
     """Monotonic seconds, and a sleep that a stop request may cut short."""
 
-    def now(self) -> float: ...
+    def now(self) -> float:
+        """Seconds from an arbitrary start that never go back: only differences count."""
+        ...
 
-    def sleep(self, seconds: float) -> None: ...
+    def sleep(self, seconds: float) -> None:
+        """Wait `seconds` (not at all for zero or less); a stop request may end it early."""
+        ...
 
 
 class SystemClock:
     """`time.monotonic` and `time.sleep`."""
 
     def now(self) -> float:
+        """`time.monotonic`: a change of the time of day cannot stretch or shrink a tick."""
         return time.monotonic()
 
     def sleep(self, seconds: float) -> None:
+        """`time.sleep`, skipped for a wait of zero or less (a tick that overran its period)."""
         if seconds > 0:
             time.sleep(seconds)
 
@@ -46,9 +52,12 @@ class FakeClock:
         self.sleeps: list[float] = []
 
     def now(self) -> float:
+        """`start` plus every sleep and advance so far."""
         return self.time
 
     def sleep(self, seconds: float) -> None:
+        """Note the sleep asked for and move time by it at once (never backwards), so no test
+        waits."""
         self.sleeps.append(seconds)
         self.time += max(0.0, seconds)
 

@@ -42,6 +42,7 @@ class EarlyExpansions:
         self.queue = list(nodes)
 
     def extend(self, nodes: list[Node]) -> None:
+        """These after what already waits (conditions added for another goal's step)."""
         self.queue += nodes
 
     # --- run by the loop and the departures --------------------------------------------

@@ -104,6 +104,7 @@ def tree_view(root: Node, reached: Mapping[int, Status], old: frozenset[int],
 
 
 def facts_view(record: TickRecord) -> Text:
+    """The facts a tick added (green) and removed (red) on one line; "no change" when none."""
     text = Text()
     for fact in record.added:
         text.append(f"+{fact}  ", style="green")
@@ -113,6 +114,8 @@ def facts_view(record: TickRecord) -> Text:
 
 
 def disturbance_view(recent: list[Disturbance]) -> Table:
+    """The latest disturbances as a table (tick, agent, what happened), names escaped so
+    that brackets in them are not read as rich markup."""
     table = Table(show_header=True, header_style="bold", box=None, pad_edge=False)
     table.add_column("tick", justify="right")
     table.add_column("agent")
@@ -165,6 +168,8 @@ class LiveView:
         self._live.__exit__(kind, error, tb)
 
     def show(self, root: Node, reached: Mapping[int, Status], record: TickRecord) -> None:
+        """Redraw the frame after a tick; its disturbances join the last few shown, and the
+        nodes of this tree are remembered so the next frame can mark what is new."""
         self.recent.extend(record.disturbances)
         self.expansions += len(record.expansions)
         view = frame(root, reached, record, list(self.recent), self._seen, self.expansions,

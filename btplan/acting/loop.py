@@ -470,6 +470,8 @@ class BlendedLoop:
             )
 
     def goal_holds(self) -> bool:
+        """Whether every goal literal holds in the world now: the tree's SUCCESS alone is not
+        trusted, since a later action in the same tick may have undone a goal."""
         state = self.world.facts()
         return all(g.holds(state) for g in self.task.goal_literals)
 

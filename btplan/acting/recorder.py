@@ -97,6 +97,8 @@ class Recorder:
             self.after(TickReport(self.loop.ticks, FAILURE))
 
     def detach(self) -> None:
+        """Stop recording the loop's tree, on every way out of a run: its nodes get their
+        plain classes back, so the tree handed to the caller ticks without tracing."""
         self.tree_recorder.detach(self.loop.tree)
 
 

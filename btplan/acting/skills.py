@@ -92,6 +92,8 @@ class Skills:
         self._ticked.clear()
 
     def check(self, key: LeafKey) -> bool:
+        """The world's check of a condition; an exception is logged and counts as false (or
+        stops the run with `stop_on_error`)."""
         try:
             return bool(self.world.check(key))
         except Exception as error:  # noqa: BLE001 (a robot's error is a false condition)
@@ -99,6 +101,8 @@ class Skills:
             return False
 
     def start(self, key: LeafKey) -> Status:
+        """Start the skill of `key`; if another leaf already ran it in this tick, answer as it
+        did, and if it is still running, step it instead of starting it twice."""
         given = self._ticked.get(key)
         if given is not None:
             return given  # another leaf runs it in this tick
@@ -107,6 +111,8 @@ class Skills:
         return self._begin(key)
 
     def step(self, key: LeafKey) -> Status:
+        """Step the running skill of `key`; one halted for another leaf, or never started, is
+        started again, and one another leaf ran in this tick answers as it did."""
         given = self._ticked.get(key)
         if given is not None:
             return given
@@ -115,6 +121,8 @@ class Skills:
         return self._advance(key)
 
     def halt(self, key: LeafKey) -> None:
+        """Halt the skill of `key`; ignored if it is not running, or if another leaf ran it in
+        this tick (that leaf still wants it)."""
         if key not in self.running or key in self._ticked:
             return  # not running, or another leaf runs it in this tick
         self._halt(key)

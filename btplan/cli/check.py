@@ -75,6 +75,8 @@ def check(
 
 
 def to_json(collection: Collection) -> dict[str, object]:
+    """The checked domains and problems as plain dicts, every field of their models, for
+    `check --json`: scripts read it with jq rather than parse the summary."""
     return {
         "domains": [dataclasses.asdict(d) for d in collection.domains],
         "problems": [dataclasses.asdict(p) for p in collection.problems],

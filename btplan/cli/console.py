@@ -71,6 +71,8 @@ class LazyConsole:
 
     @property
     def is_terminal(self) -> bool:
+        """Whether the stream is a terminal (a given rich console answers for itself); a closed
+        stream counts as none, so output to it stays plain."""
         if self._rich is not None and self._given:
             return self._rich.is_terminal
         try:
@@ -88,6 +90,9 @@ class LazyConsole:
         return self._rich
 
     def print(self, text: Any = "", end: str = "\n", markup: bool = True) -> None:
+        """Print `text` and `end`; a string bound for no terminal (and no forced colour) is
+        written with its markup stripped and without importing rich, anything else goes
+        through rich. `markup=False` takes the text as it is."""
         if isinstance(text, str) and not self._given and not self.is_terminal \
                 and not _styled():
             self.file.write((plain(text) if markup else text) + end)

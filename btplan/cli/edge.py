@@ -48,9 +48,11 @@ class Flag:
         self.value = False
 
     def get(self) -> bool:
+        """The switch as last set, False until then (as `ContextVar.get` answers)."""
         return self.value
 
     def set(self, value: bool) -> None:
+        """Set the switch for the command being run; every run sets it, so none inherits it."""
         self.value = value
 
 
@@ -75,6 +77,8 @@ class CommandExit(Exception):
 
 
 def version() -> str:
+    """btplan's installed version, for `--version` and bug reports; "unknown" when run from
+    a checkout never installed. importlib.metadata is imported only when asked."""
     from importlib import metadata  # imports email and more: only when asked
 
     try:
@@ -104,6 +108,8 @@ _ENVIRONMENT = {errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EIO, errno.EFBIG}
 
 
 def debugging() -> bool:
+    """Whether a bug shows its traceback: `--debug` was given, or BTPLAN_DEBUG is set to
+    anything but "" or "0" (the same for every command, without changing its flags)."""
     return debug_flag.get() or os.environ.get(DEBUG_ENV, "") not in ("", "0")
 
 

@@ -16,6 +16,8 @@ from btplan.io import read_text
 
 
 class Format(str, Enum):
+    """What `btplan export` converts a saved tree to: BehaviorTree.CPP XML, Graphviz dot,
+    btplan's JSON, or a text drawing for the terminal."""
     xml = "xml"
     dot = "dot"
     json = "json"

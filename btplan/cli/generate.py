@@ -26,6 +26,7 @@ app.add_typer(generate_app, name="generate")
 
 
 class Format(str, Enum):
+    """The language `btplan generate` writes: PDDL, or btplan's own .bt."""
     pddl = "pddl"
     bt = "bt"
 

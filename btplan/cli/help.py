@@ -81,12 +81,17 @@ class Argument(TyperArgument):
     """An argument shown by its metavar alone: `DOMAIN`, `[PROBLEM]`, `FILE...`."""
 
     def get_runtime_param(self) -> Any:
+        """The converter of this argument's values: the plain one for plain types, so that
+        pydantic is not imported (module docstring), else typer's."""
         return _runtime_param(self, super().get_runtime_param)
 
     def display_type_rich(self, ctx: Any) -> str | None:
+        """No type beside an argument in the help: its metavar already says what goes there."""
         return None
 
     def get_usage_pieces(self, ctx: Any) -> list[str]:
+        """The argument in the usage line as `NAME`, `[NAME]` when optional, `NAME...` for
+        several, instead of typer's braces."""
         name = self.metavar or (self.name or "").upper()
         if self.nargs != 1:
             name += "..."
@@ -97,9 +102,13 @@ class Option(TyperOption):
     """An option shown with its metavar (`--seed N`), a choice list, or nothing (a flag)."""
 
     def get_runtime_param(self) -> Any:
+        """The converter of this option's values: the plain one for plain types, so that pydantic
+        is not imported (module docstring), else typer's."""
         return _runtime_param(self, super().get_runtime_param)
 
     def display_type_rich(self, ctx: Any) -> str | None:
+        """What follows the option's names in the help: its metavar, nothing for a flag, else
+        typer's text without the angle brackets of a Python type (an Enum's choices)."""
         if self.metavar is not None:
             return self.metavar
         if self.is_flag:
@@ -136,4 +145,5 @@ class Group(TyperGroup):
         plain(self)
 
     def list_commands(self, ctx: Any) -> list[str]:
+        """The commands in the order they are declared, not sorted by name as click does."""
         return list(self.commands)

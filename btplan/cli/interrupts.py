@@ -47,6 +47,8 @@ class Interrupts:
 
     @property
     def exit_code(self) -> int:
+        """128 plus the signal that came (130 for SIGINT, 143 for SIGTERM), as a shell reports a
+        process killed by it; SIGINT's code when none came."""
         return 128 + (self.signum or signal.SIGINT)
 
     def __enter__(self) -> Self:

@@ -219,6 +219,9 @@ class LineStream:
             self._fd = None
 
     def write_line(self, line: str) -> None:
+        """Write `line`, a newline added if it has none, in one write; if that write fails, a file
+        is cut back to where the line began, so it still ends on a whole line, and the error is
+        raised again."""
         data = (line if line.endswith("\n") else line + "\n")
         if self._fd is None:
             write_stream(self._stream if self._stream is not None else 1, data)

@@ -16,6 +16,8 @@ from btplan.cli.typer_app import app, guarded
 
 
 class Format(str, Enum):
+    """What `btplan plan -f` writes the tree as; when no format is given, `default_format`
+    picks one from where the output goes."""
     xml = "xml"
     dot = "dot"
     json = "json"

@@ -181,6 +181,8 @@ class Progress:
         self.dirty = False
 
     def update(self, tree: BehaviorTree) -> None:
+        """Count one expansion of `tree`; from the first second of planning on, at most once a
+        second, write the progress line (rewritten in place on a terminal)."""
         self.expansions += 1
         now = time.perf_counter()
         if not self.enabled or now - self.shown < 1.0:
@@ -211,6 +213,7 @@ class Progress:
         sys.stderr.flush()
 
     def close(self) -> None:
+        """Clear a progress line left on the terminal, so the next output starts on a clean line."""
         if self.dirty:
             sys.stderr.write("\r\x1b[2K")
             sys.stderr.flush()
@@ -232,6 +235,8 @@ def plan_text(result: PlanResult, general: bool) -> str:
 
 
 def summary(result: PlanResult) -> str:
+    """The one-line result of `btplan plan` in rich markup: expansions, conflicts, tree size,
+    plan cost and time, then what the last resort, retries and plan improvement did."""
     s = result.stats
     return (
         f"[green]planned[/]: {s.expansions} expansions, {s.conflicts_resolved} conflicts "

@@ -34,6 +34,8 @@ if TYPE_CHECKING:
 
 
 class Sim(str, Enum):
+    """The world `btplan run --sim` acts in: the symbolic one, or PyBullet (an extra,
+    imported only when chosen)."""
     symbolic = "symbolic"
     pybullet = "pybullet"
 

@@ -91,6 +91,8 @@ def parse_seeds(text: str) -> range:
 
 
 def parse_rates(text: str) -> list[float]:
+    """`--rates` as a list of probabilities: comma-separated, each in [0, 1], sorted and
+    without repeats so each rate is swept once; anything else is an InputError."""
     rates = []
     for item in text.split(","):
         try:

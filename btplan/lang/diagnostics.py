@@ -51,6 +51,8 @@ def join_words(found: list[str]) -> str:
 
 
 def describe_token(token: Token) -> str:
+    """A token quoted for a message, cut to 27 characters and "..." past 30, so that a long
+    name or string does not flood the line."""
     text = str(token)
     return f"'{text[:27]}...'" if len(text) > 30 else f"'{text}'"
 

@@ -53,20 +53,25 @@ def params(text: str) -> tuple[Parameter, ...]:
 
 
 def action(name: str, parameters: str, pre: str, post: str) -> ActionTemplate:
+    """An action template from compact text: `parameters` as `params` reads them, `pre` and
+    `post` as `lits` does (`;` between literals)."""
     return ActionTemplate(
         name=name, parameters=params(parameters), preconditions=lits(pre), effects=lits(post)
     )
 
 
 def predicate(name: str, parameters: str = "") -> Predicate:
+    """A predicate from its name and compact parameters (`"x: block"`); none by default."""
     return Predicate(name=name, parameters=params(parameters))
 
 
 def types(*pairs: tuple[str, str]) -> tuple[TypeDef, ...]:
+    """A domain's type definitions: the root `object` first, then each (name, parent) pair."""
     return (TypeDef(name=ROOT_TYPE, parent=None), *(TypeDef(name=n, parent=p) for n, p in pairs))
 
 
 def typed(names: list[str], type_: str) -> list[TypedName]:
+    """`names`, all of type `type_`: the objects of a generated problem."""
     return [TypedName(name=n, type=type_) for n in names]
 
 
@@ -126,6 +131,8 @@ def random_towers(blocks: list[str], rng: random.Random) -> list[list[str]]:
 
 
 def tower_facts(towers: list[list[str]]) -> list[Literal]:
+    """The facts of `towers` (listed bottom first): each bottom block on the table, each other
+    on the one below it, each top clear. The hand is left to the caller."""
     facts = []
     for tower in towers:
         facts.append(lit(f"on_table({tower[0]})"))

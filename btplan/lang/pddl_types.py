@@ -15,6 +15,7 @@ from btplan.model import ROOT_TYPE
 
 
 def name_of(word: Word) -> Name:
+    """A parsed word as a located Name, so validation can still point at it."""
     return Name(word.text, word.at)
 
 
@@ -75,6 +76,8 @@ def _common_ancestor(either: Group, parents: Mapping[str, str | None]) -> Word:
 
 
 def typed(items: tuple[Item, ...]) -> tuple[TypedSyntax, ...]:
+    """A `:types`, `:constants` or `:objects` list as located entries; `(either ...)` is
+    refused here, as only a predicate's parameters accept it."""
     return tuple(
         TypedSyntax(name_of(w), name_of(t) if t else None) for w, t in typed_list(items, "NAME")
     )

@@ -43,9 +43,13 @@ class Report:
         """Located remarks on legal input that is very likely a mistake; never raised."""
 
     def warn(self, remark: InputError) -> None:
+        """Keep a remark on legal input that is likely a mistake: returned, never raised, and not
+        counted toward LIMIT."""
         self.warnings.append(remark)
 
     def add(self, error: InputError) -> None:
+        """Keep `error`, or each member of an InputErrors; past LIMIT mistakes raise them all at
+        once, since the rest are usually consequences."""
         members = error.errors if isinstance(error, InputErrors) else (error,)
         for member in members:
             if len(self.errors) >= LIMIT:

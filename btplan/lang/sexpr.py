@@ -219,10 +219,14 @@ class _ToItems:
 
 
 def place(item: Item | None, parent: Group) -> Where:
+    """Where `item` stands, or its parent group's place when the item is missing (a list that
+    ended early), so that an error still points into the input."""
     return item.at if item is not None else parent.at
 
 
 def expect_group(item: Item | None, what: str, parent: Group | None = None) -> Group:
+    """`item` if it is a group; else an InputError "expected {what}" at it, or at `parent` when
+    it is missing (a caller whose item may be missing must give `parent`)."""
     if isinstance(item, Group):
         return item
     where = item.at if item is not None else (parent.at if parent else None)
@@ -231,6 +235,8 @@ def expect_group(item: Item | None, what: str, parent: Group | None = None) -> G
 
 
 def expect_word(item: Item | None, parent: Group, text: str | None, what: str) -> Word:
+    """`item` if it is a NAME word (and exactly `text`, if given); else an InputError
+    "expected {what}" at it, or at `parent` when it is missing."""
     if isinstance(item, Word) and item.kind == "NAME" and (text is None or item.text == text):
         return item
     raise place(item, parent).error(f"expected {what}")

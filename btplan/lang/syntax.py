@@ -34,14 +34,18 @@ class Where:
 
     @property
     def span(self) -> Span:
+        """The place as a Span, made on each call rather than kept (see the class docstring)."""
         return Span(self.source.path, self.line, self.column)
 
     @property
     def line_text(self) -> str:
+        """The text of the place's line, for the caret display; "" for a line outside the text."""
         lines = self.source.lines
         return lines[self.line - 1] if 0 < self.line <= len(lines) else ""
 
     def error(self, message: str, hint: str | None = None) -> InputError:
+        """An InputError at this place, carrying its line for the caret: what readers and checks
+        raise (or report) for a mistake here."""
         return InputError(message, self.span, hint, self.line_text)
 
     def _key(self) -> tuple[Span, str]:
@@ -81,6 +85,8 @@ class Name:
 
 @record(frozen=True, slots=True)
 class Number:
+    """A number as written (a cost, a duration, a function's value), kept as text so that
+    validation can refuse a bad one at its place."""
     text: str
     at: Where
 
@@ -95,6 +101,8 @@ class TypedSyntax:
 
 @record(frozen=True, slots=True)
 class ParameterSyntax:
+    """A parameter as written: its type (None: the root type), and whether it is `refined`,
+    bound by the world rather than chosen among the objects."""
     name: Name
     type: Name | None
     refined: bool = False
@@ -102,6 +110,7 @@ class ParameterSyntax:
 
 @record(frozen=True, slots=True)
 class PredicateSyntax:
+    """A predicate as declared; also a static function's declaration (PDDL's `:functions`)."""
     name: Name
     parameters: tuple[ParameterSyntax, ...]
 
@@ -117,9 +126,13 @@ class LiteralSyntax:
 
     @property
     def is_equality(self) -> bool:
+        """Whether this is `x == y` or `x != y`: it names no declared predicate, so the checks
+        treat it apart."""
         return self.predicate.text == EQUALITY
 
     def literal(self) -> Literal:
+        """The model's Literal, the places dropped: what validation keeps once the checks pass,
+        and what messages quote."""
         return Literal(
             predicate=self.predicate.text,
             args=tuple(a.text for a in self.args),
@@ -129,6 +142,8 @@ class LiteralSyntax:
 
 @record(frozen=True, slots=True)
 class ActionSyntax:
+    """An action as written: `where` holds the binding constraints, `pre` and `post` the
+    conditions and effects; cost and duration stay text until validated."""
     name: Name
     parameters: tuple[ParameterSyntax, ...]
     where: tuple[LiteralSyntax, ...] = ()
@@ -142,6 +157,7 @@ class ActionSyntax:
 
 @record(frozen=True, slots=True)
 class DomainSyntax:
+    """A domain as either reader saw it, before validation makes it a Domain."""
     name: Name
     requirements: tuple[Name, ...] = ()
     types: tuple[TypedSyntax, ...] = ()
@@ -154,6 +170,8 @@ class DomainSyntax:
 
 @record(frozen=True, slots=True)
 class ProblemSyntax:
+    """A problem as either reader saw it, before it is checked against its domain and made a
+    Problem."""
     name: Name
     domain: Name
     objects: tuple[TypedSyntax, ...] = ()
@@ -175,6 +193,7 @@ class Source:
         self.lines = text.split("\n")
 
     def at(self, line: int, column: int) -> Where:
+        """A place in this text; line and column count from 1, as lark and editors do."""
         return Where(self, line, column)
 
     def end(self) -> Where:
@@ -185,4 +204,6 @@ class Source:
         return self.at(index, len(self.lines[index - 1].rstrip()) + 1)
 
     def start(self) -> Where:
+        """The first character: where an error about the input as a whole points (a parse
+        failure with no position of its own)."""
         return self.at(1, 1)

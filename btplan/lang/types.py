@@ -25,10 +25,14 @@ class TypeTable:
 
     @classmethod
     def from_domain(cls, domain: Domain) -> TypeTable:
+        """The table of a domain that was already validated: no checks are repeated."""
         return cls(dict(domain.type_parents))
 
     @classmethod
     def from_syntax(cls, entries: Iterable[TypedSyntax]) -> TypeTable:
+        """The table of declared types, checked: a type declared twice, an unknown parent, a cycle
+        or a chain deeper than MAX_TYPE_DEPTH raises an InputError at the declaration. When
+        `object` itself is given a parent, types without one are top-level (module docstring)."""
         entries = list(entries)
         seen: dict[str, Name] = {}
         for entry in entries:
@@ -88,6 +92,8 @@ class TypeTable:
         return name.text
 
     def ancestors(self, name: str) -> list[str]:
+        """`name` and its parents up to the top, nearest first; the walk stops at a repeat, so a
+        cycle not yet refused cannot hang it."""
         chain: list[str] = []
         current: str | None = name
         while current is not None and current not in chain:
@@ -96,6 +102,8 @@ class TypeTable:
         return chain
 
     def is_subtype(self, name: str, of: str) -> bool:
+        """Whether `name` is `of` or derives from it; every type derives from `object` when the
+        table has no entry for it (a hierarchy that leaves the root implicit)."""
         return of in self.ancestors(name) or (of == ROOT_TYPE and ROOT_TYPE not in self.parents)
 
     def related(self, a: str, b: str) -> bool:
@@ -103,4 +111,6 @@ class TypeTable:
         return self.is_subtype(a, b) or self.is_subtype(b, a)
 
     def definitions(self) -> tuple[TypeDef, ...]:
+        """The table as the model's TypeDefs, `object` among them, for the Domain that
+        validation builds."""
         return tuple(TypeDef(name=n, parent=p) for n, p in self.parents.items())

@@ -78,6 +78,8 @@ def build_domain(syntax: DomainSyntax, report: Report | None = None) -> Domain:
 def typed_names(
     entries: tuple[TypedSyntax, ...], types: TypeTable, what: str, report: Report
 ) -> tuple[TypedName, ...]:
+    """A constants or objects list with resolved types; duplicate names and unknown types go
+    into `report` (an unknown type reads as the root), so every mistake shows in one pass."""
     check_unique((e.name for e in entries), what, report)
     return tuple(TypedName(name=e.name.text, type=_resolve(types, e.type, report)) for e in entries)
 
@@ -196,6 +198,8 @@ def written(literal: Literal) -> str:
 
 
 def check_contradictions(literals: tuple[LiteralSyntax, ...], what: str, why: str) -> None:
+    """Refuse a list that asks for a literal and its negation (`what` names the list, `why` is
+    the hint), at the second of the two: no state could satisfy it."""
     seen: dict[tuple[str, tuple[str, ...]], LiteralSyntax] = {}
     for lit in literals:
         key = (lit.predicate.text, tuple(a.text for a in lit.args))

@@ -29,6 +29,8 @@ INDENT = "    "
 
 
 def bt_literal(literal: Literal) -> str:
+    """A literal as the .bt language writes it: `on(a, b)`, `not clear(a)`, `hand_empty`
+    without parentheses, `x == y` for an equality. Messages quote literals this way."""
     if literal.predicate == EQUALITY:
         op = "==" if literal.positive else "!="
         return f"{literal.args[0]} {op} {literal.args[1]}"
@@ -119,6 +121,8 @@ def _unwritable(what: str) -> InputError:
 
 
 def pddl_literal(literal: Literal, variables: frozenset[str] = frozenset()) -> str:
+    """A literal as PDDL writes it, `(on ?x b)` or `(not (clear ?x))`, with `?` before the
+    names in `variables`; the `_` wildcard has no PDDL form and raises an InputError."""
     if WILDCARD in literal.args:
         raise _unwritable(f"the wildcard in '{bt_literal(literal)}'")
     args = [f"?{a}" if a in variables else a for a in literal.args]

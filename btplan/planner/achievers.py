@@ -93,6 +93,8 @@ class AchieverIndex:
 
     @property
     def relaxed(self) -> RelaxedModel:
+        """The task's h_add model, built on first use and shared with every index made `like`
+        this one; with `reachable_only`, only groundings reachable from the initial state."""
         shared = self._shared
         if shared.relaxed is None:
             shared.relaxed = RelaxedModel(self.task, objects=self.objects, ground=self.ground,

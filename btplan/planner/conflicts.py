@@ -222,6 +222,8 @@ def needs_by_alternative(
 
 
 def falsifies(action: GroundAction, literal: GroundLiteral) -> bool:
+    """Whether running `action` makes `literal` false (it deletes a positive literal's atom,
+    or adds a negative literal's): the threat test of the conflict rules (module docstring)."""
     if literal.positive:
         return action.deletes(literal.atom)
     return literal.atom in action.add

@@ -30,6 +30,8 @@ def condition_node(literal: GroundLiteral, task: Task) -> Node:
 
 
 def action_node(action: GroundAction) -> Action:
+    """The tree leaf for a grounded action; its ports are the template's parameter names, so
+    that an exported tree names each argument."""
     return Action(action.name, action.args, action.port_names)
 
 

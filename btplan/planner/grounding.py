@@ -77,6 +77,8 @@ class Objects:
         return index.get(tuple([args[i] for i in known]), _NONE)
 
     def of(self, type_name: str) -> tuple[str, ...]:
+        """The objects of `type_name` or a subtype, sorted by name; asked once per type,
+        since grounding asks again for every parameter of every binding."""
         found = self._of.get(type_name)
         if found is None:
             found = self._of[type_name] = self._task.objects_of(type_name)
@@ -84,6 +86,8 @@ class Objects:
         return found
 
     def has_type(self, value: str, type_name: str) -> bool:
+        """Whether `value` is an object of `type_name` or a subtype: a set lookup after the first
+        question about that type."""
         if type_name not in self._sets:
             self.of(type_name)
         return value in self._sets[type_name]

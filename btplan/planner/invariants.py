@@ -45,9 +45,13 @@ class MutexGroups:
         self._instances: dict[Atom, frozenset[tuple[int, tuple[str, ...]]]] = {}
 
     def covers(self, atom: Atom) -> bool:
+        """Whether some invariant speaks of `atom`'s predicate; the groups say nothing of an
+        atom they do not cover (which is not to say it excludes nothing)."""
         return atom.predicate in self._by_predicate
 
     def instances(self, atom: Atom) -> frozenset[tuple[int, tuple[str, ...]]]:
+        """The invariant instances `atom` belongs to, as (candidate number, counted arguments),
+        remembered per atom: two different atoms that share one never hold together."""
         found = self._instances.get(atom)
         if found is None:
             found = self._instances[atom] = frozenset(

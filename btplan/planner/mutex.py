@@ -124,6 +124,9 @@ class Mutexes:
             row(i)
 
     def knows(self, atom: Atom) -> bool:
+        """Whether these mutexes can judge `atom`: it is one of the grounded atoms and, with
+        invariant groups, a covered one. Callers judge an unknown atom another way (as a
+        threat from the actions)."""
         if self.groups is not None:
             return atom in self._index and self.groups.covers(atom)
         return atom in self._index

@@ -58,6 +58,8 @@ class Limits:
         return min(MAX_STATES, MAX_BYTES // (atoms // 8 + STATE_OVERHEAD))
 
     def passed(self) -> bool:
+        """Whether the search must stop now: the deadline (a time.perf_counter() value) passed,
+        or `stop` says so. Explorations ask it every CHECK_EVERY states, not on each."""
         return ((self.deadline is not None and time.perf_counter() > self.deadline)
                 or (self.stop is not None and self.stop()))
 
@@ -85,9 +87,13 @@ class PlanSpace:
         return None if any(n is None for n in out) else [n for n in out if n is not None]
 
     def goal(self, state: int) -> bool:
+        """Whether the packed `state` satisfies the goal: every positive bit set, no negative one.
+        Never, when the goal could not be packed (`reachable` is False)."""
         return state & self.positive == self.positive and not state & self.negative
 
     def runs(self, i: int, state: int) -> bool:
+        """Whether action number `i` can run in the packed `state`: its positive preconditions set
+        and none of its negative ones. Static preconditions are `banned`'s part."""
         packed = self.packed
         return (state & packed.pre_mask[i] == packed.pre_mask[i]
                 and not state & packed.neg_mask[i])
@@ -100,6 +106,8 @@ class PlanSpace:
         return states
 
     def valid(self, plan: Sequence[int]) -> bool:
+        """Whether `plan` (action numbers) runs step by step from the start, with no banned
+        action, and ends where the goal holds: no improvement is accepted otherwise."""
         state = self.start
         for i in plan:
             if i in self.banned or not self.runs(i, state):

@@ -32,7 +32,11 @@ class Engine(Protocol):
 
     def search(self, start: frozenset[Atom], goal: Sequence[GroundLiteral], max_states: int = ...,
                deadline: float | None = None, keep: Sequence[GroundLiteral] = ()
-               ) -> list[GroundAction] | None: ...
+               ) -> list[GroundAction] | None:
+        """A plan from `start` to a state where every `goal` literal holds, no step making a
+        `keep` literal false; None when none is found within `max_states` states or by
+        `deadline` (a time.perf_counter() value)."""
+        ...
 
 
 def rescue_targets(node: Node) -> list[tuple[Node, GroundLiteral]]:

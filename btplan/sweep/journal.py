@@ -32,6 +32,8 @@ class RowJournal:
         self._fd: int | None = None
 
     def exists(self) -> bool:
+        """Whether an earlier sweep left its rows: `--resume` goes on from them, and a sweep
+        without it refuses to overwrite them."""
         return Path(self.path).exists()
 
     def read(self) -> list[Row]:
@@ -55,14 +57,19 @@ class RowJournal:
             os.ftruncate(self._fd, Path(self.path).read_bytes().rfind(b"\n") + 1)
 
     def add(self, row: Row) -> None:
+        """Append `row` as one compact JSON line, with no buffer in between: a kill leaves at
+        most a torn last line, which `read` drops and `open(keep=True)` cuts. Only once open."""
         assert self._fd is not None
         write_all(self._fd, (json.dumps(row, separators=(",", ":")) + "\n").encode("utf-8"))
 
     def close(self) -> None:
+        """Stop writing; the rows stay on disk for `--resume` until `remove`. Safe to call twice."""
         if self._fd is not None:
             os.close(self._fd)
             self._fd = None
 
     def remove(self) -> None:
+        """Close and delete the side file, once the output holds every row; no error if it is
+        gone already."""
         self.close()
         Path(self.path).unlink(missing_ok=True)

@@ -56,11 +56,15 @@ def _pyarrow() -> None:
 
 
 def sort_rows(rows: Sequence[Row]) -> list[Row]:
+    """The rows by scenario, method, rate and seed (numbers compared as numbers), so that the
+    output is the same in whatever order the parallel runs finished."""
     return sorted(rows, key=lambda r: (r["scenario"], r["method"], float(r["rate"]),
                                        int(r["seed"])))
 
 
 def write_rows(path: str, rows: Sequence[Row]) -> None:
+    """Write the rows, sorted, to `path` at once: Parquet for .parquet, else CSV with every
+    one of COLUMNS (empty where older rows lack a newer column)."""
     ordered = sort_rows(rows)
     if Path(path).suffix.lower() == ".parquet":
         _write_parquet(path, ordered)
@@ -132,6 +136,8 @@ def _percent(e: Estimate) -> str:
 
 
 def markdown_table(points: Sequence[Point]) -> str:
+    """The summary as a Markdown table, numbers right-aligned: what a sweep prints when it
+    ends, ready to paste into a report."""
     lines = ["| " + " | ".join(HEADER) + " |",
              "|---|---|" + "---:|" * (len(HEADER) - 2)]
     lines += ["| " + " | ".join(c) + " |" for c in table_cells(points)]

@@ -71,6 +71,8 @@ def check_sim(job: Job) -> None:
 
 
 def empty_row(job: Job, method: str, rate: float, seed: int, error: str) -> Row:
+    """The row of a run that measured nothing (it raised or timed out): zeros, no success,
+    `error` saying why. The scenario's own text stands in when it cannot be resolved."""
     try:
         scenario = resolve(job.scenario).name
     except BtplanError:

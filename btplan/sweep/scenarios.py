@@ -55,12 +55,16 @@ class Scenario:
         return Task(domain=task.domain.model_copy(update={"actions": slow}), problem=task.problem)
 
     def disturb_specs(self, rate: float) -> list[DisturbSpec]:
+        """The scenario's specs with `{p}` set to `rate`; none at rate 0, so a rate-0 run is the
+        undisturbed baseline."""
         if rate <= 0:
             return []
         return [parse_spec(s.format(p=f"{rate:g}"), Span(f"scenario {self.name}", 1, 1))
                 for s in self.specs]
 
     def check(self, task: Task) -> None:
+        """Refuse, before any run, specs naming actions, predicates or objects `task` lacks; read
+        at rate 0.5, since at rate 0 no spec is made."""
         check_specs(self.disturb_specs(0.5), task)
 
     def check_sim(self, sim: str) -> None:

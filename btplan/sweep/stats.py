@@ -19,11 +19,15 @@ Z95 = 1.959964
 
 @dataclass(frozen=True)
 class Estimate:
+    """A value with the low and high ends of its 95% interval; all NaN (`NAN`) when there was
+    nothing to estimate."""
     value: float
     low: float
     high: float
 
     def text(self, scale: float = 1.0, digits: int = 1) -> str:
+        """`value [low, high]` times `scale`, with `digits` decimals; "-" for an estimate of
+        nothing, so that tables never show nan."""
         if math.isnan(self.value):
             return "-"
         v, lo, hi = (x * scale for x in (self.value, self.low, self.high))
@@ -62,6 +66,8 @@ def _ranks(n: int) -> tuple[int, int]:
 
 
 def wilson(successes: int, n: int) -> Estimate:
+    """The success rate `successes / n` with its Wilson 95% interval, which stays within [0, 1]
+    and does not shrink to a point at 0% or 100% as the normal one does; NAN when `n` is 0."""
     if n == 0:
         return NAN
     p = successes / n

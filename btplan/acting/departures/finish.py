@@ -42,18 +42,27 @@ class FinishFirst:
         """Actions stepped in this tick."""
 
     def facts(self) -> frozenset[Atom]:
+        """The wrapped world's state, read through: finishing first changes which action runs,
+        never what the world says holds."""
         return self.world.facts()
 
     def check(self, key: LeafKey) -> bool:
+        """The wrapped world's check: conditions are never carried or deferred."""
         return self.world.check(key)
 
     def start(self, key: LeafKey) -> Status:
+        """Start `key`, unless a carried action that does not interfere with it is stepped in
+        its place: then `key` answers RUNNING and waits (`_run`)."""
         return self._run(key, self.world.start)
 
     def step(self, key: LeafKey) -> Status:
+        """Step `key` as `start` does: a carried action that does not interfere goes first."""
         return self._run(key, self.world.step)
 
     def halt(self, key: LeafKey) -> None:
+        """Halt `key` in the world, except the first running action halted in a tick that is still
+        runnable and not yet done: that one is carried, kept running until the tree's next start
+        in this tick shows whether it may finish first (`end_tick` halts it otherwise)."""
         if key == self.carried:
             return  # finishing it first, for the action that waits
         if key in self.running and self.carried is None and self._may_carry(key):

@@ -18,14 +18,21 @@ class FinishHalted(Departure):
     name = "finish_halted_action"
 
     def attach(self, loop: LoopState) -> None:
+        """Make the wrapper once the loop exists: it needs the loop's world and grounding."""
         super().attach(loop)
         self.wrapper = FinishFirst(loop.world, loop.grounding)
 
     def world_for_tick(self, world: World) -> World:
+        """The `world_for_tick` hook: the tree ticks against the FinishFirst wrapper, not `world`,
+        so that a halt can be held back until the tree's replacement action is known."""
         return self.wrapper
 
     def end_tick(self) -> None:
+        """The `end_tick` hook: a carried action that nothing replaced within the tick is halted
+        now, so a halt is only ever deferred inside one tick."""
         self.wrapper.end_tick()
 
     def new_world(self, world: World) -> None:
+        """The `new_world` hook: a fresh wrapper over the loop's new world, since what the old
+        one carried runs in the old world."""
         self.wrapper = FinishFirst(self.loop.world, self.loop.grounding)

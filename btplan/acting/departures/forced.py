@@ -26,8 +26,12 @@ class ForcedFirst(Departure):
         self.later: list[Node] = []
 
     def before_expansion(self, node: Node, state: frozenset[Atom]) -> None:
+        """The `before_expansion` hook: note `node`'s later false siblings now, while `node` still
+        stands in its Sequence; ExpandTree is about to move it under a Fallback."""
         self.later = later_false(node, state, self.loop.expanded)
 
     def after_expansion(self, report: TickReport) -> None:
+        """The `after_expansion` hook: of the noted conditions, expand at once only those that
+        force the order (`EarlyExpansions.expand_if_forced`); the others wait for their tick."""
         later, self.later = self.later, []
         self.loop.early.expand_if_forced(report, later)

@@ -25,8 +25,12 @@ class LaterPreconditions(Departure):
     name = "expand_later_preconditions"
 
     def before_tick(self, report: TickReport, last: frozenset[Atom]) -> None:
+        """The `before_tick` hook: expand what an outside change broke ahead of the running
+        actions since `last`, instead of when the robot gets there."""
         self.loop.early.expand_broken(report, last)
 
     def before_expansion(self, node: Node, state: frozenset[Atom]) -> None:
+        """The `before_expansion` hook: queue all of `node`'s later false siblings to expand in
+        this tick, replacing what the previous expansion queued."""
         # Looked up before ExpandTree moves the node under a Fallback.
         self.loop.early.replace(later_false(node, state, self.loop.expanded))

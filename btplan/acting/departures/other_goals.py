@@ -33,12 +33,16 @@ class OtherGoals(Departure):
 
     def rank_achievers(self, achievers: list[GroundAction], literal: GroundLiteral,
                        state: frozenset[Atom]) -> list[GroundAction]:
+        """The `rank_achievers` hook: achievers that also make other open goals true come first
+        (`credit_goals`), before the width cuts the list."""
         loop = self.loop
         return credit_goals(achievers, literal, loop.task.goal_literals, loop.index.relaxed,
                             state)
 
     def new_subtree(self, subtree: Fallback, achievers: list[GroundAction],
                     literal: GroundLiteral, state: frozenset[Atom]) -> None:
+        """The `new_subtree` hook: add before the first achiever the conditions of another goal's
+        step it enables (`prepare_before`), remember them as optional and queue them to expand."""
         if self._plans is None:
             self._plans = relaxed_plans(self.loop.index.relaxed)
         wanted = prepare_before(self.loop, subtree, achievers[0], literal, state, self.added,
@@ -47,7 +51,10 @@ class OtherGoals(Departure):
         self.loop.early.extend(wanted)
 
     def optional(self, node: Node) -> bool:
+        """The `optional` hook: the conditions this departure added are extras, never needs."""
         return node in self.added
 
     def gives_up(self, node: Node) -> bool:
+        """The `gives_up` hook: a stuck condition this departure added is taken out of the tree
+        (`give_up`) rather than counted as stuck; False for every other condition."""
         return node in self.added and give_up(node)

@@ -58,6 +58,8 @@ class RelaxedPlans:
 
     @property
     def relaxed(self) -> RelaxedModel:
+        """The relaxed model these plans are of; only weakly held, so asking after the model was
+        dropped is a bug (an assertion)."""
         relaxed = self._relaxed()
         assert relaxed is not None, "asked after its relaxed model was dropped"
         return relaxed
@@ -88,6 +90,8 @@ Producer = tuple[GroundAction, float, tuple[Atom, ...]]
 
 
 def producers(relaxed: RelaxedModel, atom: Atom) -> list[Producer]:
+    """`atom`'s producers in the relaxed model's order, each with its cost and positive
+    preconditions: the parts the relaxed plan reads for every state."""
     return [(a, a.cost, a.needs)
             for a in relaxed.producers(atom)]
 

@@ -37,4 +37,6 @@ class ProtectGoals(Departure):
 
     def new_subtree(self, subtree: Fallback, achievers: list[GroundAction],
                     literal: GroundLiteral, state: frozenset[Atom]) -> None:
+        """The `new_subtree` hook: guard each new alternative with the white knights that keep
+        the other goals reachable (`protect`), before IncreasePriority places the subtree."""
         protect(self.loop, subtree)

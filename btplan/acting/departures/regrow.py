@@ -104,4 +104,6 @@ class Regrow(Departure):
     name = "refine_more"
 
     def expand_again(self, state: frozenset[Atom]) -> Expansion | None:
+        """The `expand_again` hook: when nothing new is left to expand, give a failed expanded
+        condition achievers that fit the state now (`reexpand`); None when none has any."""
         return reexpand(self.loop, state)

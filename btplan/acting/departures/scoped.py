@@ -23,9 +23,13 @@ class ScopedMoves(Departure):
 
     def new_subtree(self, subtree: Fallback, achievers: list[GroundAction],
                     literal: GroundLiteral, state: frozenset[Atom]) -> None:
+        """The `new_subtree` hook: remember the subtree's lineage before IncreasePriority moves
+        it, the only way to know later which Fallbacks it left."""
         self.before = lineage(subtree)
 
     def placed(self, subtree: Fallback, moves: int) -> None:
+        """The `placed` hook: if the subtree moved, make it skip while a condition it was moved
+        away from holds (`scope_moved`); those guards are never expanded."""
         before, self.before = self.before, []
         if moves and before:
             self.loop.never_expand(scope_moved(before, self.loop.task))
