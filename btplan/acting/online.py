@@ -283,14 +283,14 @@ def run(
     An agent takes the cube out of the gripper at tick 5: the tree picks it again,
     with no new expansion (the first reactive property).
 
-    >>> from btplan.acting.offline.planning import load
-    >>> outcome = run(load("pick_place"), disturb=["undo:Pick@5"])
-    >>> outcome.reached, outcome.reason
-    (True, 'goal reached')
-    >>> [str(action) for action in outcome.executed][:3]
-    ['MoveTo(cube, tau_cube)', 'Pick(cube)', 'Pick(cube)']
-    >>> [tick for tick, _ in outcome.totals.expansions]
-    [1, 1, 1, 1]
+        >>> from btplan.acting.offline.planning import load
+        >>> outcome = run(load("pick_place"), disturb=["undo:Pick@5"])
+        >>> outcome.reached, outcome.reason
+        (True, 'goal reached')
+        >>> [str(action) for action in outcome.executed][:3]
+        ['MoveTo(cube, tau_cube)', 'Pick(cube)', 'Pick(cube)']
+        >>> [tick for tick, _ in outcome.totals.expansions]
+        [1, 1, 1, 1]
     """
     specs = [parse_spec(s) if isinstance(s, str) else s for s in disturb]
     check_specs(specs, task)

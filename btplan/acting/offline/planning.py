@@ -42,9 +42,9 @@ def load(*paths: str, problem: str | None = None) -> Task:
     A bare name that is not a file names a shipped domain, as on the command line, so
     that the examples work from any folder:
 
-    >>> task = load("pick_place")
-    >>> [str(goal) for goal in task.goal_literals]
-    ['on(cube, goal)']
+        >>> task = load("pick_place")
+        >>> [str(goal) for goal in task.goal_literals]
+        ['on(cube, goal)']
     """
     from btplan.lang import load as load_paths
     from btplan.shipped import resolve
@@ -86,11 +86,11 @@ def plan(
 
     The paper's Example 1, planned: four expansions, and the plan the tree executes.
 
-    >>> result = plan(load("pick_place"))
-    >>> result.stats.expansions, result.stats.tree_size
-    (4, 19)
-    >>> [str(action) for action in result.executed]
-    ['MoveTo(cube, tau_cube)', 'Pick(cube)', 'MoveTo(goal, tau_goal)', 'Place(cube, goal)']
+        >>> result = plan(load("pick_place"))
+        >>> result.stats.expansions, result.stats.tree_size
+        (4, 19)
+        >>> [str(action) for action in result.executed]
+        ['MoveTo(cube, tau_cube)', 'Pick(cube)', 'MoveTo(goal, tau_goal)', 'Place(cube, goal)']
     """
     opts = options or PlannerOptions()
     if max_expansions is not None:
