@@ -8,7 +8,9 @@ included) is run from a fresh folder that holds the shipped domains and examples
   shows, which must match what the command prints (standard output and error together;
   a line `...` stands for any lines, and `...` inside a line for any text, so that times
   and paths may vary);
-- each page's Python blocks in one interpreter, in order, as a reader pastes them.
+- each page's Python blocks in one interpreter, in order, as a reader pastes them; an
+  `output` block right after a Python block shows what that block prints, and must
+  match it the same way.
 
 What is not run is listed below with the reason, and is run elsewhere where it can be.
 """
@@ -27,7 +29,9 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
-BLOCK = re.compile(r"^( *)```(sh|console|python)\n(.*?)^\1```", re.MULTILINE | re.DOTALL)
+BLOCK = re.compile(r"^( *)```(\w*)\n(.*?)^\1```", re.MULTILINE | re.DOTALL)
+MARK = "--- end of a block of the page ---"
+"""Printed between a page's Python blocks, to tell what each of them printed."""
 
 NOT_RUN = {
     "pip install": "installs packages: the suite runs in the installed environment",
@@ -172,10 +176,29 @@ def test_the_shell_examples_run(page: str, folder: Path) -> None:
 @pytest.mark.parametrize("page", [p for p in PAGES if blocks(p, "python")
                                   and p not in PYTHON_NOT_RUN])
 def test_the_python_examples_run(page: str, folder: Path) -> None:
-    script = "\n\n".join(blocks(page, "python"))
+    found = all_blocks(page)
+    python = [index for index, (kind, _) in enumerate(found) if kind == "python"]
+    script = f"\nprint({MARK!r})\n".join(found[index][1] for index in python)
     done = subprocess.run([sys.executable, "-c", script], cwd=folder, env=environment(),
                           capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, f"{page}\n{done.stderr[-3000:]}"
+    printed = done.stdout.split(MARK + "\n")
+    for block, index in enumerate(python):
+        after = found[index + 1] if index + 1 < len(found) else ("", "")
+        if after[0] == "output":
+            shown = after[1].splitlines()
+            assert output_matches(shown, printed[block]), (
+                f"{page}: Python block {block + 1}\nthe page shows:\n{after[1]}"
+                f"it printed:\n{printed[block]}")
+
+
+def test_every_output_block_follows_a_python_block() -> None:
+    for page in PAGES:
+        found = all_blocks(page)
+        for index, (kind, _) in enumerate(found):
+            if kind == "output":
+                assert index and found[index - 1][0] == "python", (
+                    f"{page}: an output block must come right after the Python block it shows")
 
 
 @pytest.mark.parametrize(("shown", "printed", "matches"), [
