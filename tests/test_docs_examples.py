@@ -7,7 +7,8 @@ included) is run from a fresh folder that holds the shipped domains and examples
 - a `console` block's `$ ` lines the same way, each followed by the output the page
   shows, which must match what the command prints (standard output and error together;
   a line `...` stands for any lines, and `...` inside a line for any text, so that times
-  and paths may vary);
+  and paths may vary; a command whose shown output starts with `error:` must exit 2, as
+  bad input does);
 - each page's Python blocks in one interpreter, in order, as a reader pastes them; an
   `output` block right after a Python block shows what that block prints, and must
   match it the same way.
@@ -46,6 +47,7 @@ NOT_RUN = {
     "fake_robot.py": "a second terminal (tests/ros runs it)",
     "--ros ": "needs the robot of the second terminal (tests/ros)",
     "--ray ": "needs a Ray cluster",
+    "HYPOTHESIS_PROFILE=long": "searches for many minutes (the suite runs the short profile)",
     "--hz 2": "a live view at two ticks a second (the same run without it is run)",
     "--groot": "serves Groot2 until the run ends (tests/monitor)",
     "--view": "serves a browser view (tests/monitor)",
@@ -121,7 +123,7 @@ def commands(body: str) -> list[str]:
 
 @pytest.fixture
 def folder(tmp_path: Path) -> Path:
-    for name in ("domains", "examples"):
+    for name in ("domains", "examples", "tests/bt/corpus"):
         shutil.copytree(ROOT / name, tmp_path / name)
     return tmp_path
 
@@ -130,13 +132,18 @@ def environment() -> dict[str, str]:
     return {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
 
 
-def run_line(page: str, line: str, folder: Path) -> str:
+def run_line(page: str, line: str, folder: Path, exit_code: int = 0) -> str:
     """Runs one shell line of the page as a reader would, and returns what it printed."""
     done = subprocess.run(["bash", "-o", "pipefail", "-c", line], cwd=folder,
                           env=environment(), stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, text=True, timeout=600)
-    assert done.returncode == 0, f"{page}: {line}\n{done.stdout[-2000:]}"
+    assert done.returncode == exit_code, f"{page}: {line}\n{done.stdout[-2000:]}"
     return done.stdout
+
+
+def expected_exit(shown: list[str]) -> int:
+    """0, or 2 (bad input) when the page shows the command's error line."""
+    return 2 if shown and shown[0].startswith("error:") else 0
 
 
 @pytest.mark.parametrize("page", [p for p in PAGES if blocks(p, "sh") or blocks(p, "console")])
@@ -147,7 +154,7 @@ def test_the_shell_examples_run(page: str, folder: Path) -> None:
             for line, shown in sessions(body):
                 if any(part in line for part in NOT_RUN):
                     continue
-                printed = run_line(page, line, folder)
+                printed = run_line(page, line, folder, expected_exit(shown))
                 assert output_matches(shown, printed), (
                     f"{page}: {line}\nthe page shows:\n" + "\n".join(shown)
                     + f"\nit printed:\n{printed}")
@@ -220,3 +227,67 @@ def test_the_shown_output_is_compared_with_what_varies_left_out(
 def test_a_console_block_pairs_each_command_with_its_output() -> None:
     body = "$ btplan plan x \\\n    -q\nplanned\n$ cat plan.txt  # the plan\n(pick)\n"
     assert sessions(body) == [("btplan plan x -q", ["planned"]), ("cat plan.txt", ["(pick)"])]
+
+
+RUN = {"sh", "console", "python"}
+SHOWN = {
+    "output": "what the Python block before it prints (checked with that block)",
+    "bt": "an excerpt of a shipped .bt file (checked below)",
+    "json": "JSON a command writes or reads (checked to parse)",
+    "toml": "a binding or scene file (checked to parse)",
+    "xml": "a tree file (checked to parse)",
+    "cpp": "C++ for BehaviorTree.CPP (built by tests/bt when a compiler is present)",
+    "text": "a synopsis, a sketch or a grammar: not code",
+}
+"""The languages a block may have besides those that run, and how each is kept true."""
+
+
+def test_every_block_says_what_it_is() -> None:
+    unlabelled = {page: sorted({kind for kind, _ in all_blocks(page)} - RUN - set(SHOWN))
+                  for page in PAGES}
+    assert {page: kinds for page, kinds in unlabelled.items() if kinds} == {}
+
+
+def tokens(text: str) -> list[str]:
+    """A .bt text's words and signs, comments and layout dropped."""
+    return re.findall(r"\w+|[^\w\s]", re.sub(r"#[^\n]*", "", text))
+
+
+def contains(words: list[str], part: list[str]) -> bool:
+    width = len(part)
+    return any(words[start:start + width] == part for start in range(len(words) - width + 1))
+
+
+def test_the_bt_excerpts_are_taken_from_shipped_files() -> None:
+    shipped = [tokens(path.read_text()) for path in (ROOT / "domains").rglob("*.bt")]
+    shipped += [tokens(path.read_text()) for path in (ROOT / "examples").rglob("*.bt")]
+    stale = [(page, body.splitlines()[0]) for page in PAGES
+             for kind, body in all_blocks(page) if kind == "bt"
+             if not any(contains(words, tokens(body)) for words in shipped)]
+    assert stale == []
+
+
+def test_the_files_shown_parse() -> None:
+    import json
+    import tomllib
+    import xml.etree.ElementTree as ElementTree
+
+    def xml_excerpt(text: str) -> object:
+        """Elements one after another, `...` lines standing for the ones left out."""
+        kept = "\n".join(line for line in text.splitlines()
+                          if line.strip() != "..." and not line.startswith("<?xml"))
+        return ElementTree.fromstring(f"<excerpt>{kept}</excerpt>")
+
+    def json_excerpt(text: str) -> object:
+        """JSON, `, ...` standing for the items left out of a list."""
+        return json.loads(re.sub(r",\s*\.\.\.", "", text))
+
+    readers = {"json": json_excerpt, "toml": tomllib.loads, "xml": xml_excerpt}
+    for page in PAGES:
+        for kind, body in all_blocks(page):
+            if kind in readers:
+                try:
+                    readers[kind](body)
+                except Exception as error:  # noqa: BLE001 - any reader's complaint
+                    raise AssertionError(f"{page}: a {kind} block does not parse: {error}\n"
+                                         f"{body[:300]}") from error
