@@ -49,7 +49,8 @@ PYTHON_NOT_RUN = {
 }
 """Pages whose Python blocks are not run, and why."""
 
-PAGES = sorted(p.name for p in DOCS.glob("*.md"))
+PAGES = sorted(p.relative_to(DOCS).as_posix() for p in DOCS.rglob("*.md"))
+"""Every page, those under docs/reference/ too, by its path in docs/."""
 
 
 def blocks(page: str, language: str) -> list[str]:
