@@ -62,7 +62,8 @@ PYTHON_NOT_RUN = {
 }
 """Pages whose Python blocks are not run, and why."""
 
-PAGES = sorted(str(p.relative_to(DOCS)) for p in DOCS.rglob("*.md"))
+PAGES = sorted(p.relative_to(DOCS).as_posix() for p in DOCS.rglob("*.md"))
+"""Every page, those under docs/reference/ and the other folders too, by its path in docs/."""
 
 
 def all_blocks(page: str) -> list[tuple[str, str]]:
