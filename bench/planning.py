@@ -9,10 +9,11 @@ and the peak memory of each (tracemalloc, in a second, untimed run). btplan's pl
 are validated against the domain before they count as solved.
 
     python bench/planning.py                        # default sizes, 2 seeds, 60 s limit
-    python bench/planning.py --seeds 1 --timeout 20 --plot docs/planning_time.png
+    python bench/planning.py --seeds 1 --timeout 20 --plot docs/images/planning_time.png
     python bench/planning.py --domains gripper --sizes 4,8,16
     python bench/planning.py --versus-paper         # btplan's defaults against Algorithms 1-3
-                                                    # as published (docs/planner.md)
+                                                    # as published
+                                                    # (docs/results/planner-versus-paper.md)
     python bench/planning.py --corpus DIR           # competition-layout domains, whole
                                                     # processes, beside peers (bench/corpus.py)
     python bench/planning.py --scale blocksworld --sizes 50,100,200 --timeout 300

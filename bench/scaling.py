@@ -6,10 +6,10 @@ fail without spending the limit again and again. Each cell is wall time from pro
 start to exit, the validated plan length and the peak RSS (kernel, wait4).
 
     python bench/planning.py --scale blocksworld --sizes 10,20,40,70,100,200 --timeout 300
-    python bench/planning.py --scale gripper,logistics --plot docs/scaling.png
+    python bench/planning.py --scale gripper,logistics --plot docs/images/scaling.png
 
 Each run's points can be kept (`--save run.json`) and drawn together later, when the
-domains need different time limits (`--replot a.json,b.json --plot docs/scaling.png`).
+domains need different time limits (`--replot a.json,b.json --plot docs/images/scaling.png`).
 """
 
 from __future__ import annotations

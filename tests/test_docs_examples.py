@@ -47,6 +47,7 @@ NOT_RUN = {
     "fake_robot.py": "a second terminal (tests/ros runs it)",
     "--ros ": "needs the robot of the second terminal (tests/ros)",
     "--ray ": "needs a Ray cluster",
+    "python -m pytest": "the test suite itself, which these tests are part of",
     "HYPOTHESIS_PROFILE=long": "searches for many minutes (the suite runs the short profile)",
     "--hz 2": "a live view at two ticks a second (the same run without it is run)",
     "--groot": "serves Groot2 until the run ends (tests/monitor)",
@@ -177,7 +178,8 @@ def test_the_shell_examples_run(page: str, folder: Path) -> None:
             else:
                 run_line(page, line, folder)
             ran += 1
-    if page not in ("reactivity.md", "ros.md", "pybullet.md"):
+    if page not in ("reactivity.md", "ros.md", "pybullet.md") and not page.startswith(
+            ("design/", "results/")):  # their commands are benchmarks, run by hand
         assert ran, f"{page}: no example ran"
 
 
@@ -292,3 +294,12 @@ def test_the_files_shown_parse() -> None:
                 except Exception as error:  # noqa: BLE001 - any reader's complaint
                     raise AssertionError(f"{page}: a {kind} block does not parse: {error}\n"
                                          f"{body[:300]}") from error
+
+
+def test_the_files_the_pages_name_exist() -> None:
+    """A page that points at a test, a benchmark or an example names a file that is there."""
+    named = re.compile(r"\b((?:tests|bench|examples|domains|btplan)/[\w/.-]*\.(?:py|bt|pddl|dist|toml))")
+    missing = sorted({(page, name) for page in PAGES
+                      for name in named.findall((DOCS / page).read_text())
+                      if not (ROOT / name).exists()})
+    assert missing == []

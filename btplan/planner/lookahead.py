@@ -1,6 +1,6 @@
 """Looking ahead with the relaxed model: which condition to expand, which achievers to keep.
 
-Two departures from the paper (docs/planner.md, departures 11 and 12), both measured on
+Two departures from the paper (docs/design/, records 13 and 12), both measured on
 competition domains:
 
 * The paper expands the first failed condition in breadth-first order (Algorithm 3).

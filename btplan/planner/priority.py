@@ -7,7 +7,7 @@ alternative). A subtree that leaves its Sequence leaves a plain copy of its cond
 behind, so the action that needed it still checks it right before running.
 
 When the paper's positions are all in conflict, btplan tries more places before
-giving up (docs/planner.md says why and what it buys):
+giving up (docs/design/planner-05-more-places.md says why and what it buys):
   1. the paper's positions for the new subtree N;
   2. the same for each enclosing atomic BT of N, innermost first (reordering goals);
   3. the front of the achiever sequence of an earlier sibling X, for those enclosing

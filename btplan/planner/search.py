@@ -79,7 +79,8 @@ class SubgoalSearch:
         self.boost = BOOST
         self.landmark_orders = False
         """Whether landmarks count again when needed again and goals reached too early
-        count as not reached (LAMA's orders; off: measured mixed, see docs/planner.md)."""
+        count as not reached (LAMA's orders; off: measured mixed, see
+        docs/results/planner-search.md)."""
         self.exclusive: Callable[[Atom, Atom], bool] | None = None
         """Whether two atoms can never hold together (mutexes), for the reasonable
         orders of landmarks; without it there are none."""
@@ -341,7 +342,7 @@ class Portfolio:
     in an order that undoes them. The second search solves parking p01, p02 and p04
     in 888, 471 and 1,792 states, but on barman p01 and hiking p03 finds nothing in
     3,000 where the first needs 2,328 and 1,584: neither is best everywhere, so they
-    share the time (docs/planner.md, "The search on parking").
+    share the time (docs/results/planner-search.md).
     """
 
     def __init__(self, engine: SubgoalSearch, start: frozenset[Atom],
