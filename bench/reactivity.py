@@ -2,10 +2,11 @@
 
 The paper's claim (Problem 1) is that a backchained BT copes with external agents more
 cheaply than re-planning. This script runs `btplan sweep` on three scenarios (the rows
-land in bench/results/), then writes docs/reactivity.md's tables and
-docs/reactivity.png from those rows: medians with 95% intervals, the targets met or
-missed per rate, and an explanation of every failed run of btplan (does replanning
-without a per-tick limit fail on the same seed too?).
+land in bench/results/), then writes the tables of docs/results/reactivity.md and
+docs/images/results-reactivity.png from those rows: medians with 95% intervals, the
+targets met or missed per rate, and an explanation of every failed run of btplan (does
+replanning without a per-tick limit fail on the same seed too?). How a sweep works is
+in docs/reactivity.md.
 
 Run:  python bench/reactivity.py --sweep [--first 0] [--seeds 1000] [--jobs 2]   (hours)
       python bench/reactivity.py                                    (report from the rows)
@@ -33,6 +34,8 @@ RESULTS = ROOT / "bench" / "results"
 RATES = "0,0.05,0.1,0.2,0.3"
 METHODS = "btplan,replan,repair"
 BASELINES = ("replan", "repair")
+PAGE = ROOT / "docs" / "results" / "reactivity.md"
+PLOT = ROOT / "docs" / "images" / "results-reactivity.png"
 
 
 @dataclass(frozen=True)
@@ -242,8 +245,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 1
     block = report(rows, args.jobs, RESULTS / "unlimited" / "reruns.parquet")
     sys.stdout.write(block)
-    fill(ROOT / "docs" / "reactivity.md", block)
-    plot(summarize(rows), str(ROOT / "docs" / "reactivity.png"))
+    fill(PAGE, block)
+    plot(summarize(rows), str(PLOT))
     return 0
 
 

@@ -42,6 +42,7 @@ NOT_RUN = {
     "| dot ": "needs graphviz, which pip does not install (tests/bt/test_dot_ascii.py)",
     "domain.pddl problem.pddl": "placeholder file names",
     "--seeds 0:1000": "a sweep of hours (bench/reactivity.py)",
+    "--seeds 0:300": "a sweep of minutes, recorded with its results (docs/results/reactivity.md)",
     "--sim pybullet": "minutes in the simulator (tests/worlds, marked slow)",
     "python bench/": "benchmarks, minutes to hours",
     "fake_robot.py": "a second terminal (tests/ros runs it)",

@@ -8,7 +8,7 @@ what users ask for:
 - `ActingConfig.paper()`: Algorithms 1-3 as published. One expansion per tick,
   breadth-first choice of the condition to expand, first-match achievers, no departure.
   The paper's walk-throughs in the docs hold under it (`--paper`).
-- `ActingConfig.default()`: what `btplan run` does, measured in docs/reactivity.md. It
+- `ActingConfig.default()`: what `btplan run` does, measured in docs/results/reactivity.md. It
   first plans offline as `btplan plan` does and acts on that tree, so an undisturbed run
   executes that plan (bench/acting_halts.py); then it grows the tree within the tick
   until it runs (a sequential planner also plans before

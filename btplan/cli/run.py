@@ -108,8 +108,8 @@ def run(
              "achievers, no departure, and the run ends after a few failing ticks. Without "
              "it, the default preset (docs/robot.md): the task is planned as `btplan plan` "
              "plans it before the first action, the tree grows within the tick until it "
-             "runs, a failing skill is retried, and the departures measured in "
-             "docs/reactivity.md act.")] = False,
+             "runs, a failing skill is retried, and the departures of docs/design/acting.md "
+             "act.")] = False,
     preset: Annotated[str | None, typer.Option(
         "--preset", metavar="NAME",
         help="How the loop acts, by preset: paper (as --paper), algorithm1 (Algorithm 1's "

@@ -97,7 +97,7 @@ def test_replan_and_repair_reach_the_goal_in_the_simulator(tmp_path: Path) -> No
     out = tmp_path / "rows.csv"
     # Seed 2: on seeds 0, 1 and 3 plan repair drops green in the doorway, where the agent
     # that takes yellow away pushes it out of the scene or under the robot's base, or
-    # finds no plan (docs/reactivity.md, the baselines' failures on `shove`); which seeds
+    # finds no plan (docs/results/reactivity.md, the baselines' failures on `shove`); which seeds
     # do depends on the physics.
     result = runner.invoke(app, ["sweep", YOUBOT, "--sim", "pybullet", "--scenario", "scene",
                                  "--seeds", "2:3", "--rates", "0", "--method", "replan,repair",

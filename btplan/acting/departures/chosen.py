@@ -2,7 +2,7 @@
 
 The order is the order of the hooks' calls: at a new subtree, the step of another goal
 is prepared first, then the goals are protected, then the subtree's place is noted for
-scoping, as the measurements in docs/reactivity.md were made.
+scoping, as the measurements in docs/results/reactivity.md were made.
 """
 
 from __future__ import annotations
