@@ -38,7 +38,6 @@ class Recorder:
         self.tree_recorder = TickRecorder()
         self.tree_recorder.attach(loop.tree)
         self._facts: frozenset[Atom] = loop.skills.facts()
-        self._ids: dict[str, Node] = {}
         self._disturbances: list[Disturbance] = []
         self._last_tick = 0
         self.goal_held = False
@@ -47,7 +46,6 @@ class Recorder:
     def before(self, tick: int) -> None:
         """Let the agents act before `tick`."""
         self._disturbances = act_all(self.agents, self.world, tick)
-        self._ids = {f"n{i}": node for i, node in enumerate(self.loop.tree.nodes())}
 
     def after(self, report: TickReport, goal: str = "", held: bool | None = None) -> None:
         """Record the tick the loop just made (`goal`: "reached" or "lost" on a change;
@@ -57,9 +55,10 @@ class Recorder:
         traces = list(self.tree_recorder.traces)
         self.tree_recorder.traces.clear()
         nodes = traces[-1].nodes if traces else ()
-        if len(traces) > 1:  # the tree grew and was ticked again within this tick
-            self._ids = {f"n{i}": node for i, node in enumerate(self.loop.tree.nodes())}
-        reached = {id(self._ids[n.id]): n.status for n in nodes if n.id in self._ids}
+        # The ids are those of the last tick recorded: the tree may have been planned
+        # anew or grown before it, within this tick.
+        ids = {f"n{i}": node for i, node in enumerate(self.tree_recorder.last_nodes)}
+        reached = {id(ids[n.id]): n.status for n in nodes if n.id in ids}
         events = self.loop.skills.take_events()
         facts = self.loop.skills.facts()
         finished = (*events.finished,)

@@ -168,6 +168,9 @@ class TickRecorder:
     def __init__(self, keep: int | None = None, sink: TextIO | None = None) -> None:
         self.traces: deque[TickTrace] = deque(maxlen=keep)
         self.sink = sink
+        self.last_nodes: list[Node] = []
+        """The nodes of the latest recorded tick, in the order of its ids (`n0`, `n1`, ...):
+        the tree may have been replaced or grown since, and the ids are this tick's."""
 
     def attach(self, tree: BehaviorTree) -> None:
         """Record the tree's ticks from its next tick on, replacing any recorder it had; node
@@ -186,7 +189,8 @@ class TickRecorder:
 
     def tick(self, tree: BehaviorTree, world: World) -> Status:
         """Tick `tree.root` through a recording channel; called by `BehaviorTree.tick`."""
-        nodes = tree.nodes()
+        nodes = list(tree.nodes())
+        self.last_nodes = nodes
         for node in nodes:
             cls = type(node)
             if cls not in _ORIGINAL:

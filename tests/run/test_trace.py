@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
 from pathlib import Path
 
 from btplan.acting.offline import load
 from btplan.acting.online import run
-from btplan.acting.records import records_to_jsonl
+from btplan.acting.records import TickRecord, records_to_jsonl
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 TASK = load(str(DOMAINS / "pick_place.bt"))
@@ -45,3 +46,17 @@ def test_each_line_names_the_nodes_reached_and_their_statuses() -> None:
     assert sum(len(line["expansions"]) for line in lines) == len(result.summary().expansions)
     executed = [a for line in lines for a in line["finished"]]
     assert executed == [str(a) for a in result.executed]
+
+
+def test_every_node_a_tick_reached_has_its_status_in_the_view_from_the_first_tick() -> None:
+    """The default loop plans the whole tree before its first action, within tick 1: the
+    statuses the view gets must be those of that tree, not of the goal-only tree before."""
+    seen: list[tuple[int, int, int]] = []
+
+    def view(root: object, reached: Mapping[int, object], record: TickRecord) -> None:
+        seen.append((record.tick, len(reached), len(record.nodes)))
+
+    result = run(TASK, view=view)
+    assert result.reached
+    assert seen[0][2] > 1
+    assert [(tick, count) for tick, count, _ in seen] == [(tick, nodes) for tick, _, nodes in seen]
