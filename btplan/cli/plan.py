@@ -66,7 +66,8 @@ def plan_command(
                                            help="Give up after N ticks.")] = 100_000,
     max_alternatives: Annotated[int | None, typer.Option(
         "--max-alternatives", metavar="N",
-        help="Achievers kept per condition (default 4, widened once if planning fails).",
+        help="Achievers kept per condition. Unset: 4, widened once if planning fails; "
+             "given: exactly N, in one strategy, without the whole-goal search.",
         show_default=False)] = None,
     paper: Annotated[bool, typer.Option(
         "--paper", help="Algorithms 1-3 exactly as published, without btplan's extensions.")
