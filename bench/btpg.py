@@ -21,10 +21,18 @@ condition leaf is a conjunction, a btplan condition one literal; both counts are
 CSV. Expansions are each planner's own unit (BTPG: conditions expanded; btplan:
 expansions of Algorithm 1).
 
-    python bench/btpg.py --btpg-src BTPG_SRC --btpg-python BTPG_VENV/bin/python
+BTPG's half needs BTPG's source and a Python environment with what its planning code
+imports (its simulators and LLM clients are not needed; the driver stands in for them):
+
+    git clone https://github.com/DIDS-EI/BTPG .btpg/src
+    python -m venv .btpg/venv
+    .btpg/venv/bin/pip install numpy sympy py_trees shortuuid antlr4-python3-runtime==4.13.1
+
+    python bench/btpg.py --btpg-src .btpg/src --btpg-python .btpg/venv/bin/python
     python bench/btpg.py --first 2 --no-cli          # btplan alone, two goals
 
 Without --btpg-src the BTPG half is skipped and btplan's numbers are printed alone.
+bench/results/btpg_rw_single.txt is a run on the RoboWaiter set.
 """
 
 from __future__ import annotations
@@ -289,7 +297,7 @@ def per_goal(outcomes: Sequence[Outcome]) -> tuple[list[str], dict[str, list[flo
         values: dict[str, float | None] = {}
         for name, key in keys.items():
             best = best_of(others, key)
-            values[name] = ratio(getattr(mine, key), best and getattr(best, key))
+            values[name] = ratio(getattr(mine, key), None if best is None else getattr(best, key))
             if values[name] is not None:
                 ratios[name].append(values[name])  # type: ignore[arg-type]
         fastest, cheapest = best_of(others, "seconds"), best_of(others, "plan_cost")
@@ -356,12 +364,13 @@ def report(goals: GoalSet, outcomes: Sequence[Outcome], timeout: float, repeat: 
     lines += planner_table(outcomes, planners)
     mine = [o for o in outcomes if o.planner == BTPLAN and o.solved]
     if mine:
-        lines += ["", f"btplan's time apart: reading (load) {ms(median([o.load_seconds for o in mine]))}"
-                  f" ms, plan() {ms(median([o.plan_seconds for o in mine]))} ms (medians)"]
+        lines += ["", f"btplan's time apart: reading (load) "
+                  f"{ms(median([o.load_seconds for o in mine]))} ms, plan() "
+                  f"{ms(median([o.plan_seconds for o in mine]))} ms (medians)"]
         if any(o.cli_seconds is not None for o in mine):
-            lines.append(f"btplan plan (CLI): summary-line time {ms(median([o.cli_seconds for o in mine]))}"
-                         f" ms, whole process {ms(median([o.cli_wall_seconds for o in mine]))} ms"
-                         " (medians)")
+            lines.append(f"btplan plan (CLI): summary-line time "
+                         f"{ms(median([o.cli_seconds for o in mine]))} ms, whole process "
+                         f"{ms(median([o.cli_wall_seconds for o in mine]))} ms (medians)")
     failed = [o for o in outcomes if not o.solved]
     for o in failed:
         lines.append(f"not solved: {o.planner} on goal {o.index} ({o.goal}): {o.note}")

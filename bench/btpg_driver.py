@@ -120,6 +120,10 @@ def import_btpg(source: Path) -> tuple[Any, Any]:
         os.chdir(here)  # the interface module changes into BTPG's examples folder
     _mend(interface)
     _silence()
+    stood_in = sorted({name if name.startswith("btpg.") else name.partition(".")[0]
+                       for name in finder.given})
+    print(f"stand-ins for modules BTPG imports but its environment lacks: "
+          f"{', '.join(stood_in) or 'none'}", file=sys.stderr)
     return interface.BTPlannerInterface, importlib.import_module(
         "btpg.algos.base.planning_action").state_transition
 
@@ -150,14 +154,13 @@ def robowaiter() -> tuple[Any, set[str]]:
     """RoboWaiter's behaviour library and initial state, as BTPG's environment sets them up
     (btpg.utils.tools.setup_environment): at the bar, hands empty, and every object
     present except the ones the robot makes (coffee, water, dessert)."""
-    from btpg.behavior_tree.behavior_libs import ExecBehaviorLibrary
-    from btpg.envs.robowaiter.exec_lib._base.rw_action import RWAction
-    from btpg.utils import ROOT_PATH
-
-    library = ExecBehaviorLibrary(f"{ROOT_PATH}/envs/robowaiter/exec_lib")
+    libraries = importlib.import_module("btpg.behavior_tree.behavior_libs")
+    actions = importlib.import_module("btpg.envs.robowaiter.exec_lib._base.rw_action")
+    root = importlib.import_module("btpg.utils").ROOT_PATH
+    library = libraries.ExecBehaviorLibrary(f"{root}/envs/robowaiter/exec_lib")
     made = {"Coffee", "Water", "Dessert"}
     state = {"RobotNear(Bar)", "Holding(Nothing)"}
-    state |= {f"Exists({thing})" for thing in RWAction.all_object - made}
+    state |= {f"Exists({thing})" for thing in actions.RWAction.all_object - made}
     return library, state
 
 

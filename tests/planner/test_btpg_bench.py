@@ -9,6 +9,7 @@ import subprocess
 import sys
 from pathlib import Path
 from types import ModuleType
+from typing import Any
 
 ROOT = Path(__file__).resolve().parents[2]
 BENCH = ROOT / "bench"
@@ -69,10 +70,10 @@ def test_a_btpg_tree_is_counted_and_run_as_btpg_ticks_it() -> None:
     driver = _load("btpg_driver")
 
     class Leaf:
-        def __init__(self, kind: str, content: object) -> None:
+        def __init__(self, kind: str, content: Any) -> None:
             self.type, self.content = kind, content
 
-        def tick(self, state: set[str]) -> tuple[str, object]:
+        def tick(self, state: set[str]) -> tuple[str, Any]:
             if self.type == "cond":
                 return ("success" if self.content <= state else "failure"), self.content
             return "running", self.content
@@ -89,7 +90,10 @@ def test_a_btpg_tree_is_counted_and_run_as_btpg_ticks_it() -> None:
             return ("failure" if self.type == "?" else "success"), None
 
     class Act:
-        name, pre, add, del_set = "Make(Water)", set(), {"Exists(Water)"}, set()
+        name = "Make(Water)"
+        pre: set[str] = set()
+        add = {"Exists(Water)"}
+        del_set: set[str] = set()
 
     tree = Node("?", [Leaf("cond", {"Exists(Water)"}),
                       Node(">", [Leaf("cond", set()), Leaf("act", Act())])])
@@ -97,3 +101,17 @@ def test_a_btpg_tree_is_counted_and_run_as_btpg_ticks_it() -> None:
     assert driver.tree_counts(tree) == (5, 2, 1)
     verdict, done = driver.run_tree(tree, set(), lambda s, a: (s | a.add) - a.del_set)
     assert (verdict, [a.name for a in done]) == ("success", ["Make(Water)"])
+
+
+def test_the_profile_finds_every_phase_and_accounts_for_the_time() -> None:
+    profile = _load("btpg_profile")
+    folder = profile.DEFAULT_SET
+    goals = profile.problems(folder, 2)
+    assert [g for g, _ in goals] == ["Low_ACTemperature", "RobotNear_BrightTable2"]
+    lines = profile.phase_table(folder, goals[1:], 10.0, 1)
+    assert not any(line.startswith("not found in btplan") for line in lines), lines
+    phases = {line[:60].strip() for line in lines[3:]}
+    for phase in ("reading: s-expressions", "mutexes: h^2", "relaxed model: reachability",
+                  "loop: ticks, expansions, tree growth"):
+        assert phase in phases, lines
+    assert lines[-1].startswith("plan() in all")
