@@ -1,0 +1,237 @@
+"""What one planning call costs on small problems, phase by phase, in one process.
+
+On a small grounded domain the search itself takes a few milliseconds, and what a call
+costs beyond it is the work done before and after: grounding, reachability, mutexes,
+the lower bound, the improvement pass. This bench plans BTPG's RoboWaiter single goals
+(bench/problems/btpg_rw_single: 174 parameterless actions, 42 goals) and Example 2
+(domains/pick_place_obstacle.bt, planned, and run with examples/example2.dist, whose
+run plans before acting), each after one warm-up call, --repeat times, keeping each
+problem's fastest call (the machine may be shared). Each call's time is split into
+phases by wrapping the planner's functions with timers: a phase's time is exclusive
+(a phase entered inside another is taken out of the outer one), and `other` is the
+rest of the call. The table gives, for each phase, the median over the problems (so
+the phases need not add up to the median call).
+
+The very first call of the process is timed on its own too (`first call`): it
+imports what planning loads on first use, as the one call of a `btplan plan` process
+does (its summary line counts from the same place). --cold plans every goal that way,
+one process each.
+
+With --save, the phases and each call's tree size and plan go to a JSON file; with
+--before, a saved run is shown beside this one, and the problems whose plan or tree
+size differ are named.
+
+    python bench/fixed_cost.py                                   # the table
+    python bench/fixed_cost.py --save before.json --cold
+    python bench/fixed_cost.py --before before.json --cold       # before | after
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import json
+import statistics
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+RW = ROOT / "bench" / "problems" / "btpg_rw_single"
+EXAMPLE2 = ROOT / "domains" / "pick_place_obstacle.bt"
+SCENARIO = ROOT / "examples" / "example2.dist"
+
+from btplan.acting.offline import load, plan  # noqa: E402  (before anything else: --first)
+
+COLD = """
+import sys, time
+from btplan.acting.offline import load, plan
+task = load(sys.argv[1], sys.argv[2])
+start = time.perf_counter()
+plan(task)
+print(time.perf_counter() - start)
+"""
+"""One planning call in a fresh process, timed as `btplan plan`'s summary line is."""
+
+PHASES: list[tuple[str, str, str, str]] = [
+    # (phase, module, owner in the module ("" for the module itself), function)
+    ("reachability", "btplan.planner.heuristic", "", "reachable_bindings"),
+    ("grounding", "btplan.planner.heuristic", "RelaxedModel", "__init__"),
+    ("achiever index", "btplan.planner.achievers", "AchieverIndex", "__init__"),
+    ("h_add", "btplan.planner.heuristic", "RelaxedModel", "costs"),
+    ("h_add", "btplan.planner.heuristic", "RelaxedModel", "reachable_avoiding"),
+    ("h^2 mutexes", "btplan.planner.mutex", "Mutexes", "__init__"),
+    ("invariants", "btplan.planner.invariants", "MutexGroups", "__init__"),
+    ("lower bound", "btplan.acting.offline.planning", "", "fewest_steps"),
+    ("packing", "btplan.planner.packed", "PackedActions", "__init__"),
+    ("improvement", "btplan.acting.offline.improved", "", "improve_executed"),
+    ("search", "btplan.planner.search", "SearchRun", "resume"),
+    ("loop setup", "btplan.acting.loop", "BlendedLoop", "__init__"),
+    ("expansion", "btplan.acting.loop", "BlendedLoop", "expand"),
+    ("ticks", "btplan.acting.loop", "BlendedLoop", "tick"),
+]
+"""Where each phase is timed. Lower rows run inside upper ones (a tick expands, an
+expansion builds the relaxed model on first use), and the times are exclusive."""
+
+ORDER = [*dict.fromkeys(p for p, *_ in PHASES), "other", "call"]
+
+
+class Timers:
+    """Exclusive seconds per phase, over the wrapped functions."""
+
+    def __init__(self) -> None:
+        self.spent: dict[str, float] = {}
+        self._open: list[list[float]] = []  # [started, seconds of inner phases]
+
+    def wrap(self, phase: str, module: str, owner: str, name: str) -> None:
+        import importlib
+
+        home: Any = importlib.import_module(module)
+        if owner:
+            home = getattr(home, owner)
+        original = home.__dict__[name] if owner else getattr(home, name)
+        opened, spent = self._open, self.spent
+
+        @functools.wraps(original)
+        def timed(*args: Any, **kwargs: Any) -> Any:
+            frame = [time.perf_counter(), 0.0]
+            opened.append(frame)
+            try:
+                return original(*args, **kwargs)
+            finally:
+                opened.pop()
+                took = time.perf_counter() - frame[0]
+                spent[phase] = spent.get(phase, 0.0) + took - frame[1]
+                if opened:
+                    opened[-1][1] += took
+
+        setattr(home, name, timed)
+
+    def measure(self, call: Callable[[], Any]) -> tuple[dict[str, float], Any]:
+        """Milliseconds per phase of one call (with `other` and the whole `call`), and
+        what it returned."""
+        self.spent.clear()
+        start = time.perf_counter()
+        out = call()
+        total = time.perf_counter() - start
+        ms = {phase: 1000 * s for phase, s in self.spent.items()}
+        ms["other"] = 1000 * total - sum(ms.values())
+        ms["call"] = 1000 * total
+        return ms, out
+
+
+def fastest(timers: Timers, call: Callable[[], Any], repeat: int
+            ) -> tuple[dict[str, float], Any]:
+    """The phases of the fastest of `repeat` calls (after one unmeasured call)."""
+    call()
+    best: tuple[dict[str, float], Any] | None = None
+    for _ in range(repeat):
+        ms, out = timers.measure(call)
+        if best is None or ms["call"] < best[0]["call"]:
+            best = (ms, out)
+    assert best is not None
+    return best
+
+
+def planned(result: Any) -> dict[str, Any]:
+    """What must stay the same from one version to the next: the plan and the tree size."""
+    return {"plan": [str(a) for a in result.executed], "cost": result.stats.cost,
+            "tree": result.stats.tree_size}
+
+
+def acted(outcome: Any) -> dict[str, Any]:
+    return {"plan": [str(a) for a in outcome.executed], "reached": outcome.reached,
+            "tree": len(outcome.tree.nodes())}
+
+
+def medians(rows: list[dict[str, float]]) -> dict[str, float]:
+    return {phase: statistics.median(r.get(phase, 0.0) for r in rows) for phase in ORDER}
+
+
+def cold_times(problems: list[Path]) -> list[float]:
+    """Milliseconds of one planning call per problem, each in a fresh process."""
+    out = []
+    for problem in problems:
+        done = subprocess.run([sys.executable, "-c", COLD, str(RW / "domain.pddl"), str(problem)],
+                              check=True, capture_output=True, text=True)
+        out.append(1000 * float(done.stdout.split()[-1]))
+    return out
+
+
+def table(columns: dict[str, dict[str, float]]) -> str:
+    width = max(12, *(len(c) + 1 for c in columns))
+    lines = [f"{'phase (ms)':<16}" + "".join(f"{c:>{width}}" for c in columns)]
+    for phase in [*ORDER, "first call", "cold median"]:
+        if not any(phase in col for col in columns.values()):
+            continue
+        cells = "".join(f"{col[phase]:>{width}.2f}" if phase in col else f"{'':>{width}}"
+                        for col in columns.values())
+        lines.append(f"{phase:<16}" + cells)
+    return "\n".join(lines)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=5, help="calls timed per problem")
+    parser.add_argument("--cold", action="store_true",
+                        help="also one fresh process per goal (the CLI's case)")
+    parser.add_argument("--save", help="write this run to a JSON file")
+    parser.add_argument("--before", help="a saved run to show beside this one")
+    parser.add_argument("--label", default="now", help="this run's name in the table")
+    args = parser.parse_args()
+    problems = sorted(RW.glob("p*.pddl"))
+    tasks = {p.stem: load(str(RW / "domain.pddl"), str(p)) for p in problems}
+    first = next(iter(tasks.values()))
+    start = time.perf_counter()
+    plan(first)  # nothing planning loads on first use is loaded yet
+    first_ms = 1000 * (time.perf_counter() - start)
+
+    from btplan.acting.online import run
+    from btplan.worlds.disturb import parse_scenario
+
+    timers = Timers()
+    for phase, module, owner, name in PHASES:
+        timers.wrap(phase, module, owner, name)
+    runs: dict[str, dict[str, Any]] = {}
+    rw: list[dict[str, float]] = []
+    for name, task in tasks.items():
+        ms, result = fastest(timers, lambda task=task: plan(task), args.repeat)
+        rw.append(ms)
+        runs[f"rw/{name}"] = planned(result)
+    example = load(str(EXAMPLE2))
+    specs = parse_scenario(SCENARIO.read_text(), str(SCENARIO))
+    ex_plan, result = fastest(timers, lambda: plan(example), args.repeat)
+    runs["example2/plan"] = planned(result)
+    ex_run, outcome = fastest(timers, lambda: run(example, disturb=specs), args.repeat)
+    runs["example2/run"] = acted(outcome)
+    rw_column = {**medians(rw), "first call": first_ms}
+    if args.cold:
+        rw_column["cold median"] = statistics.median(cold_times(problems))
+    now = {"date": time.strftime("%Y-%m-%d"), "label": args.label,
+           "columns": {f"RW single ({len(rw)})": rw_column, "Ex. 2 plan": ex_plan,
+                       "Ex. 2 run": ex_run},
+           "runs": runs}
+    columns = {f"{name} {now['label']}": col for name, col in now["columns"].items()}
+    if args.before:
+        before = json.loads(Path(args.before).read_text())
+        columns = {}
+        for name, col in now["columns"].items():
+            columns[f"{name} {before['label']}"] = before["columns"][name]
+            columns[f"{name} {now['label']}"] = col
+    print(f"{now['date']}: median over the problems of each phase, each problem's fastest of "
+          f"{args.repeat} calls after a warm-up")
+    print(table(columns))
+    if args.before:
+        changed = [key for key, seen in now["runs"].items()
+                   if before["runs"].get(key) != seen]
+        print(f"plans and tree sizes as before: {len(runs) - len(changed)} of {len(runs)}"
+              + (f"; differ: {', '.join(changed)}" if changed else ""))
+    if args.save:
+        Path(args.save).write_text(json.dumps(now, indent=1) + "\n")
+
+
+if __name__ == "__main__":
+    main()
