@@ -113,13 +113,12 @@ class AchieverIndex:
 
     @property
     def mutexes(self) -> Mutexes:
-        """h^2 mutexes from the initial state, built on first use."""
+        """h^2 mutexes from the initial state, computed when first asked a question that
+        needs them (mutex.Mutexes), from the relaxed model's groundings."""
         shared = self._shared
         if shared.mutexes is None:
-            relaxed = self.relaxed
-            with building():
-                shared.mutexes = Mutexes(relaxed.actions, self.task.initial_state,
-                                         self.task.domain)
+            shared.mutexes = Mutexes(lambda: self.relaxed.actions, self.task.initial_state,
+                                     self.task.domain)
         return shared.mutexes
 
     @property

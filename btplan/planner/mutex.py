@@ -18,10 +18,11 @@ with the number of objects.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 
 from btplan.model import Atom, Domain, GroundAction, GroundLiteral, matches
 from btplan.planner.invariants import MutexGroups
+from btplan.planner.reach import building
 
 H2_MAX_ATOMS = 2000
 """Above this many atoms, and given the domain, mutexes come from invariants."""
@@ -30,30 +31,64 @@ H2_MAX_ATOMS = 2000
 class Mutexes:
     """h^2 mutexes over the atoms of a grounded domain (or invariant groups, when large)."""
 
-    def __init__(self, actions: Sequence[GroundAction], initial: Iterable[Atom],
-                 domain: Domain | None = None, h2_max_atoms: int = H2_MAX_ATOMS) -> None:
-        init = sorted(set(initial))
-        universe: dict[Atom, int] = {}
-        for atom in init:
-            universe.setdefault(atom, len(universe))
-        for action in actions:
-            for atom in [*(p.atom for p in action.preconditions), *action.add, *action.delete]:
-                universe.setdefault(atom, len(universe))
-        self._index = universe
+    def __init__(self, actions: Sequence[GroundAction] | Callable[[], Sequence[GroundAction]],
+                 initial: Iterable[Atom], domain: Domain | None = None,
+                 h2_max_atoms: int = H2_MAX_ATOMS) -> None:
+        """`actions` may be a function that gives them: then nothing is computed (nor
+        are the actions asked for) until a question needs it, or `ready`. A plan of one
+        expansion often asks none: its achiever has fewer than two preconditions, or
+        they all hold initially, and no earlier sibling's condition is to be kept."""
+        self._initial = frozenset(initial)
+        self._domain, self._h2_max_atoms = domain, h2_max_atoms
+        self._source = actions if callable(actions) else None
         self.groups: MutexGroups | None = None
-        if domain is not None and len(universe) > h2_max_atoms:
-            self.groups = MutexGroups(domain, init)
-            return
-        atoms = list(universe)
-        self._rows = [0] * len(atoms)
+        self._index: dict[Atom, int] = {}
+        self._rows: list[int] = []
         self._reached = 0
-        start = 0
-        for atom in init:
-            start |= 1 << universe[atom]
-        for atom in init:
-            self._rows[universe[atom]] = start
-        self._reached = start
-        self._fixpoint(actions, atoms)
+        self._built = False
+        if not callable(actions):
+            self._build(actions)
+
+    def ready(self) -> Mutexes:
+        """Computed now, if they were not yet: for a caller that wants their cost paid
+        before it starts (`btplan.acting.online.task_models`)."""
+        if not self._built:
+            self._build()
+        return self
+
+    def _build(self, actions: Sequence[GroundAction] | None = None) -> None:
+        if actions is None:
+            assert self._source is not None
+            actions = self._source()
+        self._built, self._source = True, None
+        with building():
+            init = sorted(self._initial)
+            universe: dict[Atom, int] = {}
+            for atom in init:
+                universe.setdefault(atom, len(universe))
+            for action in actions:
+                for atom in [*(p.atom for p in action.preconditions), *action.add,
+                             *action.delete]:
+                    universe.setdefault(atom, len(universe))
+            self._index = universe
+            if self._domain is not None and len(universe) > self._h2_max_atoms:
+                self.groups = MutexGroups(self._domain, init)
+                return
+            atoms = list(universe)
+            self._rows = [0] * len(atoms)
+            start = 0
+            for atom in init:
+                start |= 1 << universe[atom]
+            for atom in init:
+                self._rows[universe[atom]] = start
+            self._reached = start
+            self._fixpoint(actions, atoms)
+
+    def _initially(self, atoms: Iterable[Atom]) -> bool:
+        """Whether the atoms all hold in the initial state: then no two exclude each
+        other (h^2 starts from the initial state's pairs, and no invariant group holds
+        two of its atoms initially), and nothing need be computed to say so."""
+        return self._initial.issuperset(atoms)
 
     def _fixpoint(self, actions: Sequence[GroundAction], atoms: list[Atom]) -> None:
         index = self._index
@@ -124,12 +159,16 @@ class Mutexes:
             row(i)
 
     def knows(self, atom: Atom) -> bool:
+        if not self._built:
+            self._build()
         if self.groups is not None:
             return atom in self._index and self.groups.covers(atom)
         return atom in self._index
 
     def unreachable(self, atom: Atom) -> bool:
         """True when h^2 proves `atom` never holds (never when invariants stand in for h^2)."""
+        if not self._built:
+            self._build()
         if self.groups is not None:
             return False
         i = self._index.get(atom)
@@ -139,6 +178,10 @@ class Mutexes:
         """Whether two of `atoms` (as positive literals) are `exclusive`, all pairs
         asked at once: one bit test per atom against the others instead of a call per
         pair (ranking asks it of every new achiever's preconditions)."""
+        if not self._built:
+            if len(set(atoms)) < 2 or self._initially(atoms):
+                return False
+            self._build()
         if self.groups is not None:
             known = [GroundLiteral(a) for a in atoms if self.knows(a)]
             return any(self.exclusive(a, b) for i, a in enumerate(known) for b in known[i + 1:])
@@ -161,6 +204,8 @@ class Mutexes:
         before that one, or all, that it does not know (for the caller to judge another
         way). Conflict checks ask it of each way a new subtree can succeed against each
         earlier sibling: one call where there were two per need."""
+        if not self._built:
+            self._build()
         unknown: list[GroundLiteral] = []
         if self.groups is not None:
             for need in needs:
@@ -194,6 +239,10 @@ class Mutexes:
             return a.positive != b.positive
         if not (a.positive and b.positive):
             return False
+        if not self._built:
+            if self._initially((a.atom, b.atom)):
+                return False
+            self._build()
         if self.groups is not None:
             return self.groups.exclusive(a.atom, b.atom)
         i, j = self._index.get(a.atom), self._index.get(b.atom)
