@@ -119,3 +119,35 @@ def test_needs_against_many_held_agree_with_one_pair_at_a_time() -> None:
                     assert verdict == _screened(mutexes, need, held), (need, held)
                     verdicts.append(verdict[0])
             assert any(verdicts) and not all(verdicts)
+
+
+def test_mutexes_computed_when_asked_answer_as_those_computed_at_once() -> None:
+    """Mutexes given their actions as a function answer some questions without them
+    (fewer than two atoms, or atoms that all hold initially); every answer, asked of a
+    fresh lazy instance first, is the answer of mutexes computed at once (h^2 and
+    invariant groups), and questions that need the actions make them be asked for."""
+    for task in _tasks():
+        actions = AchieverIndex(task).relaxed.actions
+        initial = sorted(task.initial_state)
+        atoms = initial[:6] + sorted({p.atom for a in actions for p in a.preconditions})[:6]
+        for limit in (2000, 0):
+            eager = Mutexes(actions, task.initial_state, task.domain, h2_max_atoms=limit)
+            asked: list[int] = []
+
+            def lazy() -> Mutexes:
+                def source() -> list[GroundAction]:
+                    asked.append(1)
+                    return actions
+                return Mutexes(source, task.initial_state, task.domain, h2_max_atoms=limit)
+
+            verdicts = []
+            for a, b in itertools.product(atoms, repeat=2):
+                first, second = GroundLiteral(a), GroundLiteral(b)
+                verdicts.append(eager.exclusive(first, second))
+                assert lazy().exclusive(first, second) is verdicts[-1]
+                assert lazy().any_exclusive([a, b]) is eager.any_exclusive([a, b])
+            assert any(verdicts) or limit == 0
+            before = len(asked)
+            assert not lazy().any_exclusive(initial) and not lazy().any_exclusive(atoms[-1:])
+            assert len(asked) == before  # answered without the actions
+            assert lazy().ready().any_exclusive(initial) is False and len(asked) == before + 1
