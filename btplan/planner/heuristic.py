@@ -95,6 +95,10 @@ class RelaxedModel:
         """Whether every action costs the same."""
         return len(set(self._action_cost)) <= 1
 
+    def action_costs(self) -> list[float]:
+        """Each action's cost, in the order of `actions` (and of `numbered`)."""
+        return self._action_cost
+
     def costs(self, state: frozenset[Atom]) -> dict[Atom, float]:
         """h_add cost of every reachable atom from `state` (generalised Dijkstra)."""
         cached = self._cache.get(state)
