@@ -5,25 +5,29 @@ costs beyond it is the work done before and after: grounding, reachability, mute
 the lower bound, the improvement pass. This bench plans BTPG's RoboWaiter single goals
 (bench/problems/btpg_rw_single: 174 parameterless actions, 42 goals) and Example 2
 (domains/pick_place_obstacle.bt, planned, and run with examples/example2.dist, whose
-run plans before acting), each after one warm-up call, --repeat times, keeping each
-problem's fastest call (the machine may be shared). Each call's time is split into
-phases by wrapping the planner's functions with timers: a phase's time is exclusive
-(a phase entered inside another is taken out of the outer one), and `other` is the
-rest of the call. The table gives, for each phase, the median over the problems (so
-the phases need not add up to the median call).
+run plans before acting). Each case is timed --repeat times, keeping each problem's
+fastest call (the machine may be shared), in two ways: `new`, every call on a task
+loaded anew (so its domain is another object, and nothing an earlier call kept is
+found: a `btplan plan` process's one call, its imports aside), and `again`, the same
+task planned again (as an acting run replans, or a caller plans many goals of one
+domain). Each call's time is split into phases by wrapping the planner's functions with
+timers: a phase's time is exclusive (a phase entered inside another is taken out of
+the outer one), and `other` is the rest of the call. For RW the table gives, for each
+phase, the median over the goals (so the phases need not add up to the median call).
 
 The very first call of the process is timed on its own too (`first call`): it
 imports what planning loads on first use, as the one call of a `btplan plan` process
 does (its summary line counts from the same place). --cold plans every goal that way,
-one process each.
+one process each, and gives the median.
 
-With --save, the phases and each call's tree size and plan go to a JSON file; with
---before, a saved run is shown beside this one, and the problems whose plan or tree
-size differ are named.
+With --save, the phases and each call's plan and tree size go to a JSON file; with
+--before, a saved run is shown beside this one, and the calls whose plan or tree size
+differ are named. Run against an older source tree (PYTHONPATH), the bench times that
+tree's planner: the functions it wraps that the older tree lacks are marked optional.
 
-    python bench/fixed_cost.py                                   # the table
+    python bench/fixed_cost.py                                   # the tables
     python bench/fixed_cost.py --save before.json --cold
-    python bench/fixed_cost.py --before before.json --cold       # before | after
+    python bench/fixed_cost.py --before before.json --cold       # before | now
 """
 
 from __future__ import annotations
@@ -31,9 +35,11 @@ from __future__ import annotations
 import argparse
 import functools
 import json
+import os
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -130,13 +136,12 @@ class Timers:
         return ms, out
 
 
-def fastest(timers: Timers, call: Callable[[], Any], repeat: int
+def fastest(timers: Timers, prepare: Callable[[], Callable[[], Any]], repeat: int
             ) -> tuple[dict[str, float], Any]:
-    """The phases of the fastest of `repeat` calls (after one unmeasured call)."""
-    call()
+    """The phases of the fastest of `repeat` calls, each made by `prepare` (untimed)."""
     best: tuple[dict[str, float], Any] | None = None
     for _ in range(repeat):
-        ms, out = timers.measure(call)
+        ms, out = timers.measure(prepare())
         if best is None or ms["call"] < best[0]["call"]:
             best = (ms, out)
     assert best is not None
@@ -159,12 +164,19 @@ def medians(rows: list[dict[str, float]]) -> dict[str, float]:
 
 
 def cold_times(problems: list[Path]) -> list[float]:
-    """Milliseconds of one planning call per problem, each in a fresh process."""
+    """Milliseconds of one planning call per problem, each in a fresh process of the
+    btplan this process imported (from another folder: `python -c` puts the working
+    folder first on sys.path)."""
+    import btplan
+
+    env = {**os.environ, "PYTHONPATH": str(Path(btplan.__file__).resolve().parents[1])}
     out = []
-    for problem in problems:
-        done = subprocess.run([sys.executable, "-c", COLD, str(RW / "domain.pddl"), str(problem)],
-                              check=True, capture_output=True, text=True)
-        out.append(1000 * float(done.stdout.split()[-1]))
+    with tempfile.TemporaryDirectory() as elsewhere:
+        for problem in problems:
+            done = subprocess.run([sys.executable, "-c", COLD, str(RW / "domain.pddl"),
+                                   str(problem)], check=True, capture_output=True, text=True,
+                                  cwd=elsewhere, env=env)
+            out.append(1000 * float(done.stdout.split()[-1]))
     return out
 
 
@@ -180,6 +192,55 @@ def table(columns: dict[str, dict[str, float]]) -> str:
     return "\n".join(lines)
 
 
+CASES = {
+    "rw new": "RW single goals, a task loaded anew for each call (nothing kept from earlier calls)",
+    "rw again": "RW single goals, the same task planned again (what earlier calls kept is used)",
+    "ex2 plan new": "Example 2 planned, a task loaded anew for each call",
+    "ex2 plan again": "Example 2 planned again",
+    "ex2 run new": "Example 2 run with its scenario (it plans before acting), a task loaded anew",
+    "ex2 run again": "Example 2 run again",
+}
+
+
+def call_on(act: Callable[[Any], Any], task: Any) -> Callable[[], Any]:
+    return lambda: act(task)
+
+
+def measured(timers: Timers, repeat: int) -> tuple[dict[str, dict[str, float]],
+                                                   dict[str, Any]]:
+    """Each case's phases (medians over the goals for RW), and what each call made."""
+    from btplan.acting.online import run
+    from btplan.worlds.disturb import parse_scenario
+
+    runs: dict[str, Any] = {}
+    new: list[dict[str, float]] = []
+    again: list[dict[str, float]] = []
+    for problem in sorted(RW.glob("p*.pddl")):
+        paths = (str(RW / "domain.pddl"), str(problem))
+        ms, result = fastest(timers, lambda: call_on(plan, load(*paths)), repeat)
+        new.append(ms)
+        runs[f"rw/{problem.stem}"] = planned(result)
+        task = load(*paths)
+        plan(task)
+        ms, result = fastest(timers, lambda: call_on(plan, task), repeat)
+        again.append(ms)
+        runs[f"rw/{problem.stem} again"] = planned(result)
+    cases = {"rw new": medians(new), "rw again": medians(again)}
+    specs = parse_scenario(SCENARIO.read_text(), str(SCENARIO))
+    acts: list[tuple[str, Callable[[Any], Any], Callable[[Any], dict[str, Any]]]] = [
+        ("plan", plan, planned), ("run", lambda task: run(task, disturb=specs), acted)]
+    for kind, act, keep in acts:
+        ms, out = fastest(timers, lambda: call_on(act, load(str(EXAMPLE2))), repeat)
+        cases[f"ex2 {kind} new"] = ms
+        runs[f"example2/{kind}"] = keep(out)
+        example = load(str(EXAMPLE2))
+        act(example)
+        ms, out = fastest(timers, lambda: call_on(act, example), repeat)
+        cases[f"ex2 {kind} again"] = ms
+        runs[f"example2/{kind} again"] = keep(out)
+    return cases, runs
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5, help="calls timed per problem")
@@ -189,51 +250,34 @@ def main() -> None:
     parser.add_argument("--before", help="a saved run to show beside this one")
     parser.add_argument("--label", default="now", help="this run's name in the table")
     args = parser.parse_args()
-    problems = sorted(RW.glob("p*.pddl"))
-    tasks = {p.stem: load(str(RW / "domain.pddl"), str(p)) for p in problems}
-    first = next(iter(tasks.values()))
+    first = load(str(RW / "domain.pddl"), str(RW / "p000.pddl"))
     start = time.perf_counter()
     plan(first)  # nothing planning loads on first use is loaded yet
     first_ms = 1000 * (time.perf_counter() - start)
-
-    from btplan.acting.online import run
-    from btplan.worlds.disturb import parse_scenario
-
     timers = Timers()
     for phase, module, owner, name in PHASES:
         timers.wrap(phase, module, owner, name)
-    runs: dict[str, dict[str, Any]] = {}
-    rw: list[dict[str, float]] = []
-    for name, task in tasks.items():
-        ms, result = fastest(timers, lambda task=task: plan(task), args.repeat)
-        rw.append(ms)
-        runs[f"rw/{name}"] = planned(result)
-    example = load(str(EXAMPLE2))
-    specs = parse_scenario(SCENARIO.read_text(), str(SCENARIO))
-    ex_plan, result = fastest(timers, lambda: plan(example), args.repeat)
-    runs["example2/plan"] = planned(result)
-    ex_run, outcome = fastest(timers, lambda: run(example, disturb=specs), args.repeat)
-    runs["example2/run"] = acted(outcome)
-    rw_column = {**medians(rw), "first call": first_ms}
+    cases, runs = measured(timers, args.repeat)
+    cases["rw new"]["first call"] = first_ms
     if args.cold:
-        rw_column["cold median"] = statistics.median(cold_times(problems))
-    now = {"date": time.strftime("%Y-%m-%d"), "label": args.label,
-           "columns": {f"RW single ({len(rw)})": rw_column, "Ex. 2 plan": ex_plan,
-                       "Ex. 2 run": ex_run},
+        cases["rw new"]["cold median"] = statistics.median(
+            cold_times(sorted(RW.glob("p*.pddl"))))
+    now = {"date": time.strftime("%Y-%m-%d"), "label": args.label, "cases": cases,
            "runs": runs}
-    columns = {f"{name} {now['label']}": col for name, col in now["columns"].items()}
-    if args.before:
-        before = json.loads(Path(args.before).read_text())
-        columns = {}
-        for name, col in now["columns"].items():
-            columns[f"{name} {before['label']}"] = before["columns"][name]
-            columns[f"{name} {now['label']}"] = col
-    print(f"{now['date']}: median over the problems of each phase, each problem's fastest of "
-          f"{args.repeat} calls after a warm-up")
-    print(table(columns))
-    if args.before:
-        changed = [key for key, seen in now["runs"].items()
-                   if before["runs"].get(key) != seen]
+    before = json.loads(Path(args.before).read_text()) if args.before else None
+    print(f"{now['date']}: each problem's fastest of {args.repeat} calls; for RW the median "
+          "over the 42 goals of each phase (so the phases need not add up to the call)")
+    for case, title in CASES.items():
+        print(f"\n{title}")
+        columns = {now["label"]: cases[case]}
+        if before is not None:
+            columns = {before["label"]: before["cases"][case], **columns}
+        print(table(columns))
+    again = [k for k in runs if k.endswith(" again") and runs[k] != runs[k[:-len(" again")]]]
+    print(f"\nplanned again as the first time: {len(runs) // 2 - len(again)} of {len(runs) // 2}"
+          + (f"; differ: {', '.join(again)}" if again else ""))
+    if before is not None:
+        changed = [key for key, seen in runs.items() if before["runs"].get(key) != seen]
         print(f"plans and tree sizes as before: {len(runs) - len(changed)} of {len(runs)}"
               + (f"; differ: {', '.join(changed)}" if changed else ""))
     if args.save:
