@@ -197,6 +197,13 @@ class Domain(Frozen):
         """Predicates some action can make true or false; the others are static."""
         return frozenset(e.predicate for a in self.actions for e in a.effects)
 
+    @cached_property
+    def kept(self) -> dict[str, Any]:
+        """What other layers work out from this domain and keep with it for later use
+        (the planner's grounded models, btplan/planner/reuse.py): the domain is frozen,
+        so what is kept stays right, and it goes when the domain does."""
+        return {}
+
 
 class FunctionValue(Frozen):
     """The value of a static numeric function in a problem: `(= (road-length a b) 12)`."""

@@ -71,8 +71,10 @@ class Mutexes:
                              *action.delete]:
                     universe.setdefault(atom, len(universe))
             self._index = universe
-            if self._domain is not None and len(universe) > self._h2_max_atoms:
-                self.groups = MutexGroups(self._domain, init)
+            domain, self._domain = self._domain, None  # mutexes kept with a domain: no
+            # reference back to it once built
+            if domain is not None and len(universe) > self._h2_max_atoms:
+                self.groups = MutexGroups(domain, init)
                 return
             atoms = list(universe)
             self._rows = [0] * len(atoms)
