@@ -179,18 +179,17 @@ def no_better_plan(relaxed: RelaxedModel, state: frozenset[Atom],
     to the plan's cost means what it says. The BTPG RoboWaiter goals (costs 3 to 15)
     are such: most plans there are one or two steps and cheapest, and the bound spares
     the improvement pass, most of a call's time (bench/fixed_cost.py)."""
-    whole = relaxed.action_costs()
-    if not float(cost).is_integer() or not all(c.is_integer() and c >= 0 for c in whole):
-        return False
-    costs = [int(c) for c in whole]
-    least = min((c for c in costs if c > 0), default=1)
-    if _too_long(relaxed, int(cost), least, work) or _too_long(relaxed, steps, 1, work):
+    if not float(cost).is_integer() or _too_long(relaxed, steps, 1, work):
         return False
     found = _numbered(relaxed, state, goal)
     if found is None:
         return True  # no plan at all
     cuts, start, goals, kept = found
-    return (cuts.bound(start, goals, int(cost), work, [costs[i] for i in kept]) >= cost
+    whole = relaxed.action_costs()
+    costs = [whole[i] for i in kept]  # the bound reads no other (and checks its rounds)
+    if not all(c.is_integer() and c >= 0 for c in costs):
+        return False
+    return (cuts.bound(start, goals, int(cost), work, [int(c) for c in costs]) >= cost
             and cuts.bound(start, goals, steps, work) >= steps)
 
 
