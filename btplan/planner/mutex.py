@@ -18,7 +18,7 @@ with the number of objects.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Collection, Iterable, Sequence
 
 from btplan.model import Atom, Domain, GroundAction, GroundLiteral, matches
 from btplan.planner.invariants import MutexGroups
@@ -26,6 +26,10 @@ from btplan.planner.reach import building
 
 H2_MAX_ATOMS = 2000
 """Above this many atoms, and given the domain, mutexes come from invariants."""
+
+WITNESS_ACTIONS = 500
+"""Actions beyond which the states one action reaches from the initial state are not
+looked at before the mutexes are computed (`Mutexes._together`)."""
 
 
 class Mutexes:
@@ -41,13 +45,16 @@ class Mutexes:
         self._initial = frozenset(initial)
         self._domain, self._h2_max_atoms = domain, h2_max_atoms
         self._source = actions if callable(actions) else None
+        self._actions = None if callable(actions) else actions
         self.groups: MutexGroups | None = None
         self._index: dict[Atom, int] = {}
+        self._numbered = False
         self._rows: list[int] = []
         self._reached = 0
         self._built = False
+        self._next: list[frozenset[Atom]] | None = None
         if not callable(actions):
-            self._build(actions)
+            self._build()
 
     def ready(self) -> Mutexes:
         """Computed now, if they were not yet: for a caller that wants their cost paid
@@ -56,23 +63,41 @@ class Mutexes:
             self._build()
         return self
 
-    def _build(self, actions: Sequence[GroundAction] | None = None) -> None:
-        if actions is None:
+    @property
+    def computed(self) -> bool:
+        """Whether the fixpoint (or the invariant groups) is computed; until a question
+        needs it, those asked so far were answered without."""
+        return self._built
+
+    def _given(self) -> Sequence[GroundAction]:
+        """The actions, asked for once."""
+        if self._actions is None:
             assert self._source is not None
-            actions = self._source()
-        self._built, self._source = True, None
-        with building():
-            init = sorted(self._initial)
-            universe: dict[Atom, int] = {}
-            for atom in init:
+            self._actions, self._source = self._source(), None
+        return self._actions
+
+    def _universe(self) -> dict[Atom, int]:
+        """Every atom the initial state or an action mentions, numbered (once)."""
+        if not self._numbered:
+            self._numbered = True
+            universe = self._index
+            for atom in sorted(self._initial):
                 universe.setdefault(atom, len(universe))
-            for action in actions:
+            for action in self._given():
                 for atom in [*(p.atom for p in action.preconditions), *action.add,
                              *action.delete]:
                     universe.setdefault(atom, len(universe))
-            self._index = universe
+        return self._index
+
+    def _build(self) -> None:
+        self._built = True
+        with building():
+            universe = self._universe()
+            actions = self._given()
+            self._actions, self._next = None, None  # not needed once built
             domain, self._domain = self._domain, None  # mutexes kept with a domain: no
             # reference back to it once built
+            init = sorted(self._initial)
             if domain is not None and len(universe) > self._h2_max_atoms:
                 self.groups = MutexGroups(domain, init)
                 return
@@ -86,11 +111,50 @@ class Mutexes:
             self._reached = start
             self._fixpoint(actions, atoms)
 
-    def _initially(self, atoms: Iterable[Atom]) -> bool:
-        """Whether the atoms all hold in the initial state: then no two exclude each
-        other (h^2 starts from the initial state's pairs, and no invariant group holds
-        two of its atoms initially), and nothing need be computed to say so."""
-        return self._initial.issuperset(atoms)
+    def _together(self, atoms: Collection[Atom]) -> bool:
+        """Whether the atoms all hold in the initial state, or all in a state one action
+        reaches from it, so that no two of them exclude each other; nothing else need be
+        computed to say so. h^2 starts from the initial state's pairs and reaches those
+        of every such state (it fires an action whose positive preconditions hold
+        pairwise), and no invariant group holds two atoms of the initial state; the
+        states one action reaches are only looked at where h^2, not the groups, would
+        answer, and the actions are few (WITNESS_ACTIONS). So a goal of two steps, the
+        robot to move and then the object to pick, is ranked without the fixpoint."""
+        if self._initial.issuperset(atoms):
+            return True
+        if self._next is None:
+            self._next = self._one_step()
+        return any(state.issuperset(atoms) for state in self._next)
+
+    def _by_h2(self) -> bool:
+        """Whether h^2 answers (not invariant groups), before it is computed."""
+        return self._domain is None or len(self._universe()) <= self._h2_max_atoms
+
+    def _pairs_together(self, needs: Sequence[GroundLiteral],
+                        held: Sequence[GroundLiteral]) -> bool:
+        """Whether no need is the negation of a held condition and each positive need
+        holds `_together` with each positive held condition h^2 knows of: then `screen`
+        finds no need excluded, with no fixpoint (a robot's move planned ahead of its
+        hand, which stays empty)."""
+        universe = self._universe()
+        for atom, positive in needs:
+            for hold in held:
+                if hold.atom == atom:
+                    if hold.positive != positive:
+                        return False
+                elif (positive and hold.positive and atom in universe
+                      and hold.atom in universe and not self._together((hold.atom, atom))):
+                    return False
+        return True
+
+    def _one_step(self) -> list[frozenset[Atom]]:
+        """The states one action reaches from the initial state (none looked at where
+        the actions are many or invariant groups would stand in for h^2)."""
+        actions = self._given()
+        if len(actions) > WITNESS_ACTIONS or not self._by_h2():
+            return []
+        initial = self._initial
+        return [action.apply(initial) for action in actions if action.applicable(initial)]
 
     def _fixpoint(self, actions: Sequence[GroundAction], atoms: list[Atom]) -> None:
         index = self._index
@@ -162,6 +226,8 @@ class Mutexes:
 
     def knows(self, atom: Atom) -> bool:
         if not self._built:
+            if self._by_h2():
+                return atom in self._universe()  # h^2 knows every atom it numbers
             self._build()
         if self.groups is not None:
             return atom in self._index and self.groups.covers(atom)
@@ -181,7 +247,7 @@ class Mutexes:
         asked at once: one bit test per atom against the others instead of a call per
         pair (ranking asks it of every new achiever's preconditions)."""
         if not self._built:
-            if len(set(atoms)) < 2 or self._initially(atoms):
+            if len(set(atoms)) < 2 or self._together(atoms):
                 return False
             self._build()
         if self.groups is not None:
@@ -207,6 +273,9 @@ class Mutexes:
         way). Conflict checks ask it of each way a new subtree can succeed against each
         earlier sibling: one call where there were two per need."""
         if not self._built:
+            if self._by_h2() and self._pairs_together(needs, held):
+                universe = self._universe()
+                return False, [need for need in needs if need.atom not in universe]
             self._build()
         unknown: list[GroundLiteral] = []
         if self.groups is not None:
@@ -242,7 +311,7 @@ class Mutexes:
         if not (a.positive and b.positive):
             return False
         if not self._built:
-            if self._initially((a.atom, b.atom)):
+            if self._together((a.atom, b.atom)):
                 return False
             self._build()
         if self.groups is not None:
