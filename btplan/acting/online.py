@@ -92,7 +92,7 @@ def task_models(task: Task, options: PlannerOptions | None = None) -> AchieverIn
     models = AchieverIndex(task, options or ACTING_OPTIONS)
     models.relaxed.actions  # noqa: B018 (built on first access)
     if (options or ACTING_OPTIONS).mutexes:
-        models.mutexes  # noqa: B018
+        models.mutexes.ready()
     return models
 
 

@@ -32,6 +32,7 @@ from btplan.planner.mutex import Mutexes
 from btplan.planner.options import PlannerOptions
 from btplan.planner.protocol import Refiner
 from btplan.planner.reach import building
+from btplan.planner.reuse import Grounded, kept_for
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -49,16 +50,20 @@ problem is wide."""
 
 
 class _Shared:
-    """What does not depend on the options: built once per task and shared."""
+    """What does not depend on the options: built once per task and shared; the models
+    among them come from those kept for the domain (btplan/planner/reuse.py)."""
 
-    def __init__(self) -> None:
+    def __init__(self, task: Task) -> None:
+        self.kept = kept_for(task.domain)
+        self.problem = self.kept.problem(task)
         self.objects: Objects | None = None
-        self.made: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
+        self.made = self.problem.made
+        self.grounded: Grounded | None = None
+        """Where the relaxed model is kept: chosen by the first index that needs it."""
         self.relaxed: RelaxedModel | None = None
         self.mutexes: Mutexes | None = None
         self.search: SubgoalSearch | None = None
-        self.packed: PackedActions | None = None
-        self.packed_bytes: int | None = None
+        self.packed_asked = False
         self.static: StaticBindings | None = None
         self.profiles: dict[int, _Profile] = {}
 
@@ -71,7 +76,9 @@ class AchieverIndex:
         reachable_only: bool = False,
     ) -> None:
         """`like`: an index of the same task whose groundings, relaxed model and mutexes
-        are shared (built once, however many planning attempts use them).
+        are shared (built once, however many planning attempts use them). Without it,
+        they are those of an earlier index of the same domain whose task agrees on
+        what each depends on (reuse.py), or built when first needed.
 
         `reachable_only`: the relaxed model keeps only the groundings relaxed-reachable
         from the initial state. Right only where nothing but the plan changes the state
@@ -80,16 +87,20 @@ class AchieverIndex:
         self.task = task
         self.reachable_only = reachable_only
         self.options = options or PlannerOptions()
-        self._shared: _Shared = like._shared if like is not None else _Shared()
-        self._by_effect: dict[tuple[str, bool], list[tuple[ActionTemplate, int, Literal]]] = {}
-        for template in task.domain.actions:
-            for number, effect in enumerate(template.effects):
-                key = (effect.predicate, effect.positive)
-                self._by_effect.setdefault(key, []).append((template, number, effect))
+        self._shared: _Shared = like._shared if like is not None else _Shared(task)
+        self._by_effect = self._shared.kept.effects
         self.objects = self._shared.objects or Objects(task)
         self._shared.objects = self.objects
         self.static = self._shared.static or StaticBindings(task, self.objects)
         self._shared.static = self.static
+
+    def _grounded(self) -> Grounded:
+        """Where the relaxed model of these indexes is kept: the first to need it says
+        whether it is grounded by reachability."""
+        shared = self._shared
+        if shared.grounded is None:
+            shared.grounded = shared.problem.grounded(self.task, self.reachable_only)
+        return shared.grounded
 
     @property
     def relaxed(self) -> RelaxedModel:
@@ -97,8 +108,11 @@ class AchieverIndex:
         this one; with `reachable_only`, only groundings reachable from the initial state."""
         shared = self._shared
         if shared.relaxed is None:
-            shared.relaxed = RelaxedModel(self.task, objects=self.objects, ground=self.ground,
-                                           reach=self.reachable_only)
+            grounded = self._grounded()
+            if grounded.relaxed is None:
+                grounded.relaxed = RelaxedModel(self.task, objects=self.objects,
+                                                ground=self.ground, reach=grounded.reach)
+            shared.relaxed = grounded.relaxed
         return shared.relaxed
 
     def ground(self, template: ActionTemplate, args: tuple[str, ...]) -> GroundAction:
@@ -115,13 +129,12 @@ class AchieverIndex:
 
     @property
     def mutexes(self) -> Mutexes:
-        """h^2 mutexes from the initial state, built on first use."""
+        """h^2 mutexes from the initial state, computed when first asked a question that
+        needs them (mutex.Mutexes), from the relaxed model's groundings."""
         shared = self._shared
         if shared.mutexes is None:
-            relaxed = self.relaxed
-            with building():
-                shared.mutexes = Mutexes(relaxed.actions, self.task.initial_state,
-                                         self.task.domain)
+            shared.mutexes = self._grounded().mutexes(
+                self.task.initial_state, lambda: self.relaxed.actions, self.task.domain)
         return shared.mutexes
 
     @property
@@ -144,12 +157,12 @@ class AchieverIndex:
         as long as its highest atom number, so actions times atoms, over two. A
         100-block blocksworld's 20,000 actions over 10,000 atoms took about 110 MB;
         gripper with 10,000 balls would take 1.6 GB."""
-        shared = self._shared
-        if shared.packed_bytes is None:
+        grounded = self._grounded()
+        if grounded.packed_bytes is None:
             actions = self.relaxed.actions
             atoms = len({a for action in actions for a in (*action.add, *action.delete)})
-            shared.packed_bytes = len(actions) * atoms // 2
-        return shared.packed_bytes
+            grounded.packed_bytes = len(actions) * atoms // 2
+        return grounded.packed_bytes
 
     def fits_search(self) -> bool:
         """Whether the search over every grounding (`subgoal_search`) fits SEARCH_BYTES;
@@ -158,8 +171,10 @@ class AchieverIndex:
 
     @property
     def has_packed(self) -> bool:
-        """Whether `packed` is built already (by the search, or on its own)."""
-        return self._shared.search is not None or self._shared.packed is not None
+        """Whether `packed` is built already (by the search, or on its own) for these
+        indexes (one an earlier planning call built is not counted: what a call does
+        depends on its task alone)."""
+        return self._shared.search is not None or self._shared.packed_asked
 
     @property
     def packed(self) -> PackedActions:
@@ -168,14 +183,16 @@ class AchieverIndex:
         shared = self._shared
         if shared.search is not None:
             return shared.search.packed
-        if shared.packed is None:
+        shared.packed_asked = True
+        grounded = self._grounded()
+        if grounded.packed is None:
             from btplan.planner.packed import PackedActions
 
             relaxed = self.relaxed
             with building():
-                shared.packed = PackedActions([a for a in relaxed.actions
-                                               if not a.delete_patterns])
-        return shared.packed
+                grounded.packed = PackedActions([a for a in relaxed.actions
+                                                 if not a.delete_patterns])
+        return grounded.packed
 
     def achievers(
         self,

@@ -45,21 +45,24 @@ class Cuts:
                 self.by_pre[atom].append(i)
 
     def bound(self, start: Iterable[int], goals: Sequence[int], enough: int,
-              work: int) -> int:
-        """The LM-cut value of reaching `goals` from the atoms `start`, in steps; it
-        stops at `enough`. Each round adds at least one step, so at most `enough`
-        rounds run: 0 when that many might take more than about `work` precondition
-        visits. Unreachable goals give `enough`."""
+              work: int, costs: Sequence[int] | None = None) -> int:
+        """The LM-cut value of reaching `goals` from the atoms `start`, in steps (or, with
+        `costs`, each action's whole, non-negative cost); it stops at `enough`. Each
+        round adds at least one step (or the least positive cost: an action of the cut
+        costs something, as the goal zone holds the supporter of every action into it
+        that costs nothing), so the rounds are bounded: 0 when they might take more
+        than about `work` precondition visits. Unreachable goals give `enough`."""
         goal_action = len(self.pre)
         pre = [*self.pre, tuple(set(goals)) or (self.start_atom,)]
         add = [*self.add, (self.goal_atom,)]
         by_pre = [list(needers) for needers in self.by_pre]
         for atom in pre[goal_action]:
             by_pre[atom].append(goal_action)
-        cost = [1] * goal_action + [0]
+        cost = [1] * goal_action + [0] if costs is None else [*costs, 0]
+        least = min((c for c in cost if c > 0), default=1)
         first = {*start, self.start_atom}
         per_round = sum(len(p) for p in pre) + len(first)
-        if per_round * enough > work:
+        if per_round * -(-enough // least) > work:
             return 0  # the rounds `enough` may need would take too long
         total = 0
         while total < enough:
@@ -154,9 +157,59 @@ def fewest_steps(relaxed: RelaxedModel, state: frozenset[Atom],
     plan may take more steps, and improve.py weighs cost first) or when grounding cut
     the model short (`RelaxedModel.complete`); 0 too where `enough` rounds over the
     model could take more than about `work` precondition visits."""
-    if (len(relaxed.actions) + 1) * enough > work or not relaxed.complete \
-            or not relaxed.uniform():
+    if not relaxed.uniform() or _too_long(relaxed, enough, 1, work):
         return 0  # every action is visited once a round: not even numbered then
+    found = _numbered(relaxed, state, goal)
+    if found is None:
+        return enough  # no action makes a goal true: nothing reaches it
+    cuts, start, goals, _ = found
+    return cuts.bound(start, goals, enough, work)
+
+
+def no_better_plan(relaxed: RelaxedModel, state: frozenset[Atom],
+                   goal: Iterable[GroundLiteral], steps: int, cost: float,
+                   work: int = WORK) -> bool:
+    """Whether LM-cut proves that no plan from `state` to `goal` is better than one of
+    `steps` steps costing `cost`, as improve.py weighs plans (cost first, then steps):
+    with the actions' own costs it reaches `cost`, so no plan costs less, and with
+    every action costing one it reaches `steps`, so none has fewer steps.
+
+    For models whose actions differ in cost (`fewest_steps` covers the others), and
+    only where every cost is a whole number: the sums are then exact, and a bound equal
+    to the plan's cost means what it says. The BTPG RoboWaiter goals (costs 3 to 15)
+    are such: most plans there are one or two steps and cheapest, and the bound spares
+    the improvement pass, most of a call's time (bench/fixed_cost.py)."""
+    if not float(cost).is_integer() or _too_long(relaxed, steps, 1, work):
+        return False
+    found = _numbered(relaxed, state, goal)
+    if found is None:
+        return True  # no plan at all
+    cuts, start, goals, kept = found
+    whole = relaxed.action_costs()
+    costs = [whole[i] for i in kept]  # the bound reads no other (and checks its rounds)
+    if not all(c.is_integer() and c >= 0 for c in costs):
+        return False
+    return (cuts.bound(start, goals, int(cost), work, [int(c) for c in costs]) >= cost
+            and cuts.bound(start, goals, steps, work) >= steps)
+
+
+def _too_long(relaxed: RelaxedModel, enough: int, least: int, work: int) -> bool:
+    """Whether the rounds of a bound reaching `enough`, each adding `least` at least,
+    could visit more than `work` actions, or grounding cut the model short (then no
+    bound holds)."""
+    return (len(relaxed.actions) + 1) * -(-enough // least) > work or not relaxed.complete
+
+
+def _numbered(relaxed: RelaxedModel, state: frozenset[Atom], goal: Iterable[GroundLiteral]
+              ) -> tuple[Cuts, list[int], list[int], list[int]] | None:
+    """The actions relevant to the goal ready for LM-cut, the state and goals as atom
+    numbers, and the relevant actions' numbers in the model; None when no action makes
+    a goal true that `state` lacks.
+
+    An action is relevant when it adds a goal or a precondition of a relevant action;
+    h_max of the goals, the goal zone and the cuts involve no other, so the bound is
+    the same as over the whole model, in rounds over fewer actions (a RoboWaiter goal
+    of one step: 1 of 174)."""
     ids, pre, add = relaxed.numbered()
     goals = []
     for literal in goal:
@@ -164,6 +217,20 @@ def fewest_steps(relaxed: RelaxedModel, state: frozenset[Atom],
             if literal.atom in ids:
                 goals.append(ids[literal.atom])
             elif literal.atom not in state:
-                return enough  # no action makes it true: nothing reaches the goal
-    cuts = Cuts(pre, add, len(ids))
-    return cuts.bound([ids[a] for a in state if a in ids], goals, enough, work)
+                return None
+    adders: dict[int, list[int]] = {}
+    for i, added in enumerate(add):
+        for atom in added:
+            adders.setdefault(atom, []).append(i)
+    wanted, todo, relevant = set(goals), list(goals), set()
+    while todo:
+        for i in adders.get(todo.pop(), ()):
+            if i not in relevant:
+                relevant.add(i)
+                for atom in pre[i]:
+                    if atom not in wanted:
+                        wanted.add(atom)
+                        todo.append(atom)
+    kept = sorted(relevant)
+    cuts = Cuts([pre[i] for i in kept], [add[i] for i in kept], len(ids))
+    return cuts, [ids[a] for a in state if a in ids], goals, kept

@@ -136,6 +136,13 @@ def bindings(
     changing = task.domain.changed_predicates
     if optimistic:
         checks = tuple(c for c in checks if c.predicate not in changing)
+    if not template.parameters and reachable is None:
+        # nothing to bind (every action of a grounded domain): its checks are ground and
+        # read once, as below, without the machinery (RoboWaiter's 174 actions: 1.0 ms
+        # of its relaxed model's 3.6, now 0.45)
+        if all(_holds(lit, partial, state) for lit in checks):
+            yield dict(partial)
+        return
     positive = tuple(c for c in checks if c.positive and c.predicate != EQUALITY)
     types = {p.name: p.type for p in template.parameters}
     hopes: tuple[Literal, ...] = ()

@@ -80,6 +80,7 @@ class RelaxedModel:
         self._add_ids = [tuple(dict.fromkeys(ids[a] for a in act.add)) for act in self.actions]
         self._action_cost = [float(act.cost) for act in self.actions]
         self._integral = all(c.is_integer() and 0 <= c < 2 ** 40 for c in self._action_cost)
+        self._pre_ids: list[tuple[int, ...]] | None = None
         self._by_pre_id: list[list[int]] = [[] for _ in ids]
         for i, pre in enumerate(self._pre):
             for atom in set(pre):
@@ -89,11 +90,17 @@ class RelaxedModel:
         """The atom numbers of `costs`, and each action's positive preconditions and adds
         as those numbers (for other estimates over the same model: bound.py)."""
         ids = self._ids
-        return ids, [tuple([ids[a] for a in pre]) for pre in self._pre], self._add_ids
+        if self._pre_ids is None:  # once: a model is kept for later planning calls
+            self._pre_ids = [tuple([ids[a] for a in pre]) for pre in self._pre]
+        return ids, self._pre_ids, self._add_ids
 
     def uniform(self) -> bool:
         """Whether every action costs the same."""
         return len(set(self._action_cost)) <= 1
+
+    def action_costs(self) -> list[float]:
+        """Each action's cost, in the order of `actions` (and of `numbered`)."""
+        return self._action_cost
 
     def costs(self, state: frozenset[Atom]) -> dict[Atom, float]:
         """h_add cost of every reachable atom from `state` (generalised Dijkstra)."""

@@ -18,42 +18,143 @@ with the number of objects.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Collection, Iterable, Sequence
 
 from btplan.model import Atom, Domain, GroundAction, GroundLiteral, matches
 from btplan.planner.invariants import MutexGroups
+from btplan.planner.reach import building
 
 H2_MAX_ATOMS = 2000
 """Above this many atoms, and given the domain, mutexes come from invariants."""
+
+WITNESS_ACTIONS = 500
+"""Actions beyond which the states one action reaches from the initial state are not
+looked at before the mutexes are computed (`Mutexes._together`)."""
 
 
 class Mutexes:
     """h^2 mutexes over the atoms of a grounded domain (or invariant groups, when large)."""
 
-    def __init__(self, actions: Sequence[GroundAction], initial: Iterable[Atom],
-                 domain: Domain | None = None, h2_max_atoms: int = H2_MAX_ATOMS) -> None:
-        init = sorted(set(initial))
-        universe: dict[Atom, int] = {}
-        for atom in init:
-            universe.setdefault(atom, len(universe))
-        for action in actions:
-            for atom in [*(p.atom for p in action.preconditions), *action.add, *action.delete]:
-                universe.setdefault(atom, len(universe))
-        self._index = universe
+    def __init__(self, actions: Sequence[GroundAction] | Callable[[], Sequence[GroundAction]],
+                 initial: Iterable[Atom], domain: Domain | None = None,
+                 h2_max_atoms: int = H2_MAX_ATOMS) -> None:
+        """`actions` may be a function that gives them: then nothing is computed (nor
+        are the actions asked for) until a question needs it, or `ready`. A plan of one
+        expansion often asks none: its achiever has fewer than two preconditions, or
+        they all hold initially, and no earlier sibling's condition is to be kept."""
+        self._initial = frozenset(initial)
+        self._domain, self._h2_max_atoms = domain, h2_max_atoms
+        self._source = actions if callable(actions) else None
+        self._actions = None if callable(actions) else actions
         self.groups: MutexGroups | None = None
-        if domain is not None and len(universe) > h2_max_atoms:
-            self.groups = MutexGroups(domain, init)
-            return
-        atoms = list(universe)
-        self._rows = [0] * len(atoms)
+        self._index: dict[Atom, int] = {}
+        self._numbered = False
+        self._rows: list[int] = []
         self._reached = 0
-        start = 0
-        for atom in init:
-            start |= 1 << universe[atom]
-        for atom in init:
-            self._rows[universe[atom]] = start
-        self._reached = start
-        self._fixpoint(actions, atoms)
+        self._built = False
+        self._next: list[frozenset[Atom]] | None = None
+        if not callable(actions):
+            self._build()
+
+    def ready(self) -> Mutexes:
+        """Computed now, if they were not yet: for a caller that wants their cost paid
+        before it starts (`btplan.acting.online.task_models`)."""
+        if not self._built:
+            self._build()
+        return self
+
+    @property
+    def computed(self) -> bool:
+        """Whether the fixpoint (or the invariant groups) is computed; until a question
+        needs it, those asked so far were answered without."""
+        return self._built
+
+    def _given(self) -> Sequence[GroundAction]:
+        """The actions, asked for once."""
+        if self._actions is None:
+            assert self._source is not None
+            self._actions, self._source = self._source(), None
+        return self._actions
+
+    def _universe(self) -> dict[Atom, int]:
+        """Every atom the initial state or an action mentions, numbered (once)."""
+        if not self._numbered:
+            self._numbered = True
+            universe = self._index
+            for atom in sorted(self._initial):
+                universe.setdefault(atom, len(universe))
+            for action in self._given():
+                for atom in [*(p.atom for p in action.preconditions), *action.add,
+                             *action.delete]:
+                    universe.setdefault(atom, len(universe))
+        return self._index
+
+    def _build(self) -> None:
+        self._built = True
+        with building():
+            universe = self._universe()
+            actions = self._given()
+            self._actions, self._next = None, None  # not needed once built
+            domain, self._domain = self._domain, None  # mutexes kept with a domain: no
+            # reference back to it once built
+            init = sorted(self._initial)
+            if domain is not None and len(universe) > self._h2_max_atoms:
+                self.groups = MutexGroups(domain, init)
+                return
+            atoms = list(universe)
+            self._rows = [0] * len(atoms)
+            start = 0
+            for atom in init:
+                start |= 1 << universe[atom]
+            for atom in init:
+                self._rows[universe[atom]] = start
+            self._reached = start
+            self._fixpoint(actions, atoms)
+
+    def _together(self, atoms: Collection[Atom]) -> bool:
+        """Whether the atoms all hold in the initial state, or all in a state one action
+        reaches from it, so that no two of them exclude each other; nothing else need be
+        computed to say so. h^2 starts from the initial state's pairs and reaches those
+        of every such state (it fires an action whose positive preconditions hold
+        pairwise), and no invariant group holds two atoms of the initial state; the
+        states one action reaches are only looked at where h^2, not the groups, would
+        answer, and the actions are few (WITNESS_ACTIONS). So a goal of two steps, the
+        robot to move and then the object to pick, is ranked without the fixpoint."""
+        if self._initial.issuperset(atoms):
+            return True
+        if self._next is None:
+            self._next = self._one_step()
+        return any(state.issuperset(atoms) for state in self._next)
+
+    def _by_h2(self) -> bool:
+        """Whether h^2 answers (not invariant groups), before it is computed."""
+        return self._domain is None or len(self._universe()) <= self._h2_max_atoms
+
+    def _pairs_together(self, needs: Sequence[GroundLiteral],
+                        held: Sequence[GroundLiteral]) -> bool:
+        """Whether no need is the negation of a held condition and each positive need
+        holds `_together` with each positive held condition h^2 knows of: then `screen`
+        finds no need excluded, with no fixpoint (a robot's move planned ahead of its
+        hand, which stays empty)."""
+        universe = self._universe()
+        for atom, positive in needs:
+            for hold in held:
+                if hold.atom == atom:
+                    if hold.positive != positive:
+                        return False
+                elif (positive and hold.positive and atom in universe
+                      and hold.atom in universe and not self._together((hold.atom, atom))):
+                    return False
+        return True
+
+    def _one_step(self) -> list[frozenset[Atom]]:
+        """The states one action reaches from the initial state (none looked at where
+        the actions are many or invariant groups would stand in for h^2)."""
+        actions = self._given()
+        if len(actions) > WITNESS_ACTIONS or not self._by_h2():
+            return []
+        initial = self._initial
+        return [action.apply(initial) for action in actions if action.applicable(initial)]
 
     def _fixpoint(self, actions: Sequence[GroundAction], atoms: list[Atom]) -> None:
         index = self._index
@@ -127,12 +228,18 @@ class Mutexes:
         """Whether these mutexes can judge `atom`: it is one of the grounded atoms and, with
         invariant groups, a covered one. Callers judge an unknown atom another way (as a
         threat from the actions)."""
+        if not self._built:
+            if self._by_h2():
+                return atom in self._universe()  # h^2 knows every atom it numbers
+            self._build()
         if self.groups is not None:
             return atom in self._index and self.groups.covers(atom)
         return atom in self._index
 
     def unreachable(self, atom: Atom) -> bool:
         """True when h^2 proves `atom` never holds (never when invariants stand in for h^2)."""
+        if not self._built:
+            self._build()
         if self.groups is not None:
             return False
         i = self._index.get(atom)
@@ -142,6 +249,10 @@ class Mutexes:
         """Whether two of `atoms` (as positive literals) are `exclusive`, all pairs
         asked at once: one bit test per atom against the others instead of a call per
         pair (ranking asks it of every new achiever's preconditions)."""
+        if not self._built:
+            if len(set(atoms)) < 2 or self._together(atoms):
+                return False
+            self._build()
         if self.groups is not None:
             known = [GroundLiteral(a) for a in atoms if self.knows(a)]
             return any(self.exclusive(a, b) for i, a in enumerate(known) for b in known[i + 1:])
@@ -164,6 +275,11 @@ class Mutexes:
         before that one, or all, that it does not know (for the caller to judge another
         way). Conflict checks ask it of each way a new subtree can succeed against each
         earlier sibling: one call where there were two per need."""
+        if not self._built:
+            if self._by_h2() and self._pairs_together(needs, held):
+                universe = self._universe()
+                return False, [need for need in needs if need.atom not in universe]
+            self._build()
         unknown: list[GroundLiteral] = []
         if self.groups is not None:
             for need in needs:
@@ -197,6 +313,10 @@ class Mutexes:
             return a.positive != b.positive
         if not (a.positive and b.positive):
             return False
+        if not self._built:
+            if self._together((a.atom, b.atom)):
+                return False
+            self._build()
         if self.groups is not None:
             return self.groups.exclusive(a.atom, b.atom)
         i, j = self._index.get(a.atom), self._index.get(b.atom)

@@ -13,6 +13,7 @@ from btplan.planner import AchieverIndex, Mutexes
 from tests.planner.test_invariants import task_of
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
+RW = Path(__file__).resolve().parents[2] / "bench" / "problems" / "btpg_rw_single"
 
 
 def plain_h2(actions: Sequence[GroundAction], initial: Iterable[Atom],
@@ -119,3 +120,69 @@ def test_needs_against_many_held_agree_with_one_pair_at_a_time() -> None:
                     assert verdict == _screened(mutexes, need, held), (need, held)
                     verdicts.append(verdict[0])
             assert any(verdicts) and not all(verdicts)
+
+
+def test_mutexes_computed_when_asked_answer_as_those_computed_at_once() -> None:
+    """Mutexes given their actions as a function answer some questions without the
+    fixpoint (fewer than two atoms; atoms that all hold initially, or all one action
+    away; what h^2 knows of); every answer, asked of one not yet computed, is the answer
+    of mutexes computed at once (h^2, and invariant groups), and questions that need
+    more make them be computed."""
+    robowaiter = load(str(RW / "domain.pddl"), str(RW / "p004.pddl"))
+    verdicts: list[bool] = []
+    for task in [*_tasks(), robowaiter]:
+        actions = AchieverIndex(task).relaxed.actions
+        initial = sorted(task.initial_state)
+        ahead = sorted({a for action in actions if action.applicable(task.initial_state)
+                        for a in action.add} - task.initial_state)
+        atoms = initial[:4] + ahead[:4] + sorted({p.atom for a in actions
+                                                  for p in a.preconditions})[:4]
+        literals = [GroundLiteral(a, sign) for a in atoms[::2] for sign in (True, False)]
+        for limit in (2000, 0):
+            eager = Mutexes(actions, task.initial_state, task.domain, h2_max_atoms=limit)
+            lazy: list[Mutexes] = []
+
+            def fresh() -> Mutexes:
+                """Not yet computed: a new one once a question made the last one compute."""
+                if not lazy or lazy[-1].computed:
+                    lazy.append(Mutexes(lambda: actions, task.initial_state, task.domain,
+                                        h2_max_atoms=limit))
+                return lazy[-1]
+
+            assert not fresh().any_exclusive(initial) and not fresh().any_exclusive(atoms[-1:])
+            assert not lazy[-1].computed and fresh().ready().computed
+            # invariant groups answer pairs of the initial state only, and are slow to make
+            for a, b in itertools.product(atoms if limit else initial[:4] + atoms[-2:], repeat=2):
+                first, second = GroundLiteral(a), GroundLiteral(b)
+                verdicts.append(eager.exclusive(first, second))
+                assert fresh().exclusive(first, second) is verdicts[-1]
+                assert fresh().any_exclusive([a, b]) is eager.any_exclusive([a, b])
+            if limit == 0:
+                continue  # invariant groups: asked anything else, they are computed
+            for atom in atoms:
+                assert fresh().knows(atom) is eager.knows(atom)
+            for need in list(itertools.combinations(literals, 2))[::5]:
+                for held in itertools.combinations(literals[:6], 2):
+                    assert fresh().screen(need, held) == eager.screen(need, held), (need, held)
+    assert any(verdicts) and not all(verdicts)
+
+
+def test_questions_answered_without_the_fixpoint_do_not_compute_it() -> None:
+    """Pairs of the initial state, pairs one action away from it (the robot moved next
+    to the yogurt, the hand still empty) and the atoms h^2 knows of are answered from
+    the actions alone; a pair further away (the yogurt held next to the bar) is not."""
+    task = load(str(RW / "domain.pddl"), str(RW / "p004.pddl"))
+    actions = AchieverIndex(task).relaxed.actions
+    near, empty = Atom("robotnear", ("yogurt",)), Atom("holding", ("nothing",))
+    held, bar = Atom("holding", ("yogurt",)), Atom("robotnear", ("bar",))
+    mutexes = Mutexes(lambda: actions, task.initial_state, task.domain)
+    assert not mutexes.any_exclusive([near, empty]) and not mutexes.any_exclusive(
+        sorted(task.initial_state))
+    assert not mutexes.exclusive(GroundLiteral(near), GroundLiteral(empty))
+    assert mutexes.screen([GroundLiteral(near)], [GroundLiteral(empty)]) == (False, [])
+    assert mutexes.knows(near) and not mutexes.computed
+    assert not mutexes.exclusive(GroundLiteral(held), GroundLiteral(bar))
+    assert mutexes.computed
+    fresh = Mutexes(lambda: actions, task.initial_state, task.domain)
+    assert fresh.exclusive(GroundLiteral(near), GroundLiteral(bar))  # one place at a time
+    assert fresh.computed

@@ -191,8 +191,10 @@ def test_the_kept_relaxed_plan_and_producers_match_computing_them_afresh(tmp_pat
 
 def test_a_runs_relaxed_model_is_freed_once_the_run_is_over(tmp_path: Path) -> None:
     """The relaxed plans are kept per relaxed model only while the model lives: a run
-    that prepared conditions leaves nothing behind (a strong reference from the kept
-    plans kept every run's model and grounded task alive)."""
+    that prepared conditions leaves nothing behind once its task is gone (a strong
+    reference from the kept plans kept every run's model and grounded task alive). The
+    model itself is kept with the domain for the next planning call on it
+    (btplan/planner/reuse.py), and goes with it."""
     import gc
     import weakref
 
@@ -205,5 +207,8 @@ def test_a_runs_relaxed_model_is_freed_once_the_run_is_over(tmp_path: Path) -> N
                                           goal_credit=True), models=index)
     assert outcome.reached and relaxed() in _PLANS  # the run kept its relaxed plans
     del outcome, index
+    gc.collect()
+    assert AchieverIndex(task, OPTIONS).relaxed is relaxed()  # kept for the next call
+    del task
     gc.collect()
     assert relaxed() is None

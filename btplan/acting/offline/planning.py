@@ -25,7 +25,7 @@ from btplan.bt import BehaviorTree
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex, PlannerOptions
-from btplan.planner.bound import fewest_steps
+from btplan.planner.bound import fewest_steps, no_better_plan
 from btplan.records import replace
 
 TYPE_CHECKING = False
@@ -200,8 +200,11 @@ def _improve(run: Run, result: PlanResult, say: Callable[[str], None] | None) ->
     """The result with a shorter plan ahead of its tree, when one is found in time."""
     started = time.perf_counter()
     relaxed, steps = run.models.relaxed, len(result.executed)
-    floor = fewest_steps(relaxed, run.task.initial_state, run.task.goal_literals, steps)
-    if floor >= steps:  # no plan is shorter: the search and its imports are spared
+    start, goal = run.task.initial_state, run.task.goal_literals
+    floor = fewest_steps(relaxed, start, goal, steps)
+    if floor >= steps or (floor == 0 and no_better_plan(relaxed, start, goal, steps,
+                                                         result.stats.cost)):
+        # no plan is shorter (nor cheaper): the search and its imports are spared
         now = time.perf_counter()
         return replace(result, stats=replace(result.stats, removed=0, shortest=True,
                                              improve_seconds=now - started,
