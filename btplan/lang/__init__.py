@@ -13,11 +13,20 @@ TYPE_CHECKING = False
 if TYPE_CHECKING:
     from typing import Any
 
-    from btplan.lang.loader import BtFile, Collection, collect, load, load_domain, parse_bt
+    from btplan.lang.loader import (
+        BtFile,
+        Collection,
+        collect,
+        load,
+        load_domain,
+        load_problem,
+        parse_bt,
+    )
     from btplan.lang.report import InputErrors
 
 _HOMES = {"BtFile": "loader", "Collection": "loader", "collect": "loader", "load": "loader",
-          "load_domain": "loader", "parse_bt": "loader", "InputErrors": "report"}
+          "load_domain": "loader", "load_problem": "loader", "parse_bt": "loader",
+          "InputErrors": "report"}
 
 
 def __getattr__(name: str) -> Any:
@@ -34,5 +43,6 @@ __all__ = [
     "collect",
     "load",
     "load_domain",
+    "load_problem",
     "parse_bt",
 ]

@@ -218,6 +218,29 @@ def load_domain(path: str) -> Domain:
     return collection.domains[0]
 
 
+def load_problem(domain: Domain, path: str, problem: str | None = None) -> Task:
+    """A problem of `path` as a task of an already loaded `domain` (the first problem, or
+    the one called `problem`).
+
+    Many problems of one domain (goal sets, a robot given one goal after another) read
+    the domain once, and their tasks share the one `Domain` object, which keeps the
+    models planning builds for it (btplan/planner/reuse.py) for the next task. A domain
+    in the file is not read again: the problems are checked against `domain`.
+    """
+    report = Report()
+    _, syntaxes = _read_nonempty(path)
+    check_unique((p.name for p in syntaxes), "problem", report)
+    problems = []
+    for syntax in syntaxes:
+        if report.attempt(_domain_for, syntax, [domain], set()) is not None:
+            built = report.attempt(build_problem, syntax, domain, report)
+            if built is not None:
+                problems.append(built)
+    report.raise_errors([path])
+    collection = Collection((domain,), tuple(problems), (0,) * len(problems), (path,))
+    return collection.task(problem)
+
+
 def is_pddl(path: str, text: str) -> bool:
     """PDDL by suffix; for standard input or other suffixes, by the first character."""
     suffix = Path(path).suffix.lower() if path != STDIO else ""

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from btplan.errors import InputError
-from btplan.lang import collect, load, load_domain, parse_bt
+from btplan.lang import collect, load, load_domain, load_problem, parse_bt
 from btplan.model import Atom, GroundLiteral, Literal, Parameter, instantiate
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"
@@ -119,4 +119,27 @@ def test_a_problem_needs_its_domain(tmp_path: Path) -> None:
     with pytest.raises(InputError) as caught:
         load([str(tmp_path / "p.bt")])
     assert "which none of the inputs defines" in caught.value.message
+    assert caught.value.span is not None and caught.value.span.line == 2
+
+
+def test_problems_of_a_loaded_domain_share_it(tmp_path: Path) -> None:
+    """Many problems of one domain read it once; their tasks share the one Domain object,
+    and each is the task `load` makes of the two files."""
+    (tmp_path / "tiny.bt").write_text(TINY)
+    (tmp_path / "p.bt").write_text(TINY_PROBLEMS)
+    domain = load_domain(str(tmp_path / "tiny.bt"))
+    first = load_problem(domain, str(tmp_path / "p.bt"))
+    second = load_problem(domain, str(tmp_path / "p.bt"), problem="second")
+    assert first.domain is domain and second.domain is domain
+    both = [str(tmp_path / "tiny.bt"), str(tmp_path / "p.bt")]
+    assert second.goal_literals == load(both, problem="second").goal_literals
+    assert first.problem == load(both).problem
+
+
+def test_a_problem_for_another_domain_is_refused_where_it_names_it(tmp_path: Path) -> None:
+    (tmp_path / "p.bt").write_text(TINY_PROBLEMS.replace("for tiny", "for tiney"))
+    domain = load_domain(PICK_PLACE)
+    with pytest.raises(InputError) as caught:
+        load_problem(domain, str(tmp_path / "p.bt"))
+    assert "'tiney'" in caught.value.message
     assert caught.value.span is not None and caught.value.span.line == 2
