@@ -25,6 +25,13 @@ FORBIDDEN: dict[str, tuple[str, ...]] = {
                     "btplan.sweep"),
     "btplan.bt": ("btplan.model", "btplan.atoms", "btplan.lang", "btplan.planner", "btplan.worlds", "btplan.cli",
                   "btplan.acting", "btplan.sweep"),
+    # Grounding a lifted model is beneath both rooms of planning.
+    "btplan.grounding": ("btplan.planner", "btplan.classical", "btplan.bt", "btplan.lang",
+                         "btplan.worlds", "btplan.cli", "btplan.acting", "btplan.sweep"),
+    # The classical planner knows nothing of trees, of PA-BT or of acting.
+    "btplan.classical": ("btplan.planner", "btplan.bt", "btplan.lang", "btplan.worlds",
+                         "btplan.cli", "btplan.acting", "btplan.sweep", "btplan.robot",
+                         "btplan.monitor", "btplan.ros", "btplan.baselines"),
     "btplan.planner": ("btplan.lang", "btplan.worlds", "btplan.cli", "btplan.acting",
                        "btplan.sweep"),
     "btplan.worlds": ("btplan.lang", "btplan.planner", "btplan.cli", "btplan.acting",
@@ -95,12 +102,40 @@ def test_no_forbidden_imports() -> None:
     assert violations() == []
 
 
-def test_the_rules_catch_an_upward_import(tmp_path: Path) -> None:
-    """Guard against a checker that silently accepts everything."""
+def reaches_into_the_classical_planner(path: Path, mod: str) -> list[str]:
+    """Imports of a module behind btplan.classical's names by code outside the package:
+    `from btplan.classical.search import ...` or `import btplan.classical.search`."""
+    if within(mod, "btplan.classical"):
+        return []
+    hits = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            targets = [node.module]
+        elif isinstance(node, ast.Import):
+            targets = [alias.name for alias in node.names]
+        else:
+            continue
+        hits += [f"{mod}:{node.lineno} imports {target}" for target in targets
+                 if within(target, "btplan.classical") and target != "btplan.classical"]
+    return hits
+
+
+def test_the_pa_bt_steps_use_the_classical_planner_through_its_names_only() -> None:
+    """btplan.planner (and the acting layer) ask search, heuristics and mutexes through
+    btplan.classical's public names: the search internals can change behind them."""
+    assert [hit for path in sorted(PACKAGE.rglob("*.py"))
+            for hit in reaches_into_the_classical_planner(path, module_name(path))] == []
+
+
+def test_a_reach_into_the_classical_planner_is_caught(tmp_path: Path) -> None:
     sample = tmp_path / "sample.py"
-    sample.write_text("from btplan.planner import x\nimport btplan.cli.app\n")
-    assert [t for _, t in imported_modules(sample)] == [
-        "btplan.planner", "btplan.planner.x", "btplan.cli.app"]
+    sample.write_text("from btplan.classical.search import SubgoalSearch\n"
+                      "from btplan.classical import Portfolio, improve\n"
+                      "import btplan.classical.mutex\n")
+    assert reaches_into_the_classical_planner(sample, "btplan.planner.sample") == [
+        "btplan.planner.sample:1 imports btplan.classical.search",
+        "btplan.planner.sample:3 imports btplan.classical.mutex"]
+    assert reaches_into_the_classical_planner(sample, "btplan.classical.sample") == []
 
 
 def test_library_code_never_exits_or_uses_typer() -> None:

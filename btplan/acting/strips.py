@@ -22,7 +22,7 @@ from btplan.model import (
     Task,
     instantiate,
 )
-from btplan.planner.grounding import wildcard_instances
+from btplan.grounding import wildcard_instances
 
 
 def require_pyperplan() -> None:

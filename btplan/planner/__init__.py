@@ -11,7 +11,7 @@ from btplan.planner.expand import (
     initial_tree,
     literal_of,
 )
-from btplan.planner.mutex import Mutexes
+from btplan.classical import Mutexes
 from btplan.planner.options import PlannerOptions
 from btplan.planner.priority import Resolution, increase_priority, resolve_conflicts
 from btplan.planner.protocol import PlanningWorld, Refiner

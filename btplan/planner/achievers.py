@@ -26,18 +26,18 @@ from btplan.model import (
 )
 from btplan.planner.candidates import StaticBindings, Way
 from btplan.planner.expand import circular, non_circular
-from btplan.planner.grounding import Objects, bindings
-from btplan.planner.heuristic import RelaxedModel
-from btplan.planner.mutex import Mutexes
+from btplan.grounding import Objects, bindings
+from btplan.classical import RelaxedModel
+from btplan.classical import Mutexes
 from btplan.planner.options import PlannerOptions
 from btplan.planner.protocol import Refiner
-from btplan.planner.reach import building
+from btplan.classical import building
 from btplan.planner.reuse import Grounded, kept_for
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from btplan.planner.packed import PackedActions
-    from btplan.planner.search import SubgoalSearch
+    from btplan.classical import PackedActions
+    from btplan.classical import SubgoalSearch
 
 ALL = 1 << 30
 """A limit on achievers that keeps them all."""
@@ -142,7 +142,7 @@ class AchieverIndex:
         """The last-resort search over the relaxed model's groundings, built on first use."""
         shared = self._shared
         if shared.search is None:
-            from btplan.planner.search import SubgoalSearch  # the last resort: rarely needed
+            from btplan.classical import SubgoalSearch  # the last resort: rarely needed
 
             relaxed = self.relaxed
             with building():
@@ -186,7 +186,7 @@ class AchieverIndex:
         shared.packed_asked = True
         grounded = self._grounded()
         if grounded.packed is None:
-            from btplan.planner.packed import PackedActions
+            from btplan.classical import PackedActions
 
             relaxed = self.relaxed
             with building():

@@ -20,8 +20,8 @@ import weakref
 from collections.abc import Callable, Sequence
 
 from btplan.model import Atom, GroundAction, GroundLiteral
-from btplan.planner.heuristic import RelaxedModel
-from btplan.planner.mutex import Mutexes
+from btplan.classical import RelaxedModel
+from btplan.classical import Mutexes
 
 Orders = dict[GroundLiteral, set[GroundLiteral]]
 _KEPT: weakref.WeakKeyDictionary[RelaxedModel, dict[tuple[GroundLiteral, ...], Orders]] = (

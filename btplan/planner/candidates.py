@@ -27,7 +27,7 @@ import math
 from collections.abc import Callable, Container, Mapping, Sequence
 
 from btplan.model import EQUALITY, ActionTemplate, Atom, GroundAction, GroundLiteral, Literal, Task
-from btplan.planner.grounding import Objects, unify
+from btplan.grounding import Objects, unify
 
 TABLE_LIMIT = 50_000
 """Groundings of one template beyond which it is not tabled. Well below the relaxed

@@ -26,8 +26,8 @@ from btplan.bt import Action, Fallback, LeafKey, Node
 from btplan.bt import Sequence as SequenceNode
 from btplan.model import Atom, GroundAction, GroundLiteral
 from btplan.planner.expand import literal_of
-from btplan.planner.heuristic import RelaxedModel
-from btplan.planner.mutex import Mutexes
+from btplan.classical import RelaxedModel
+from btplan.classical import Mutexes
 from btplan.records import record
 
 Grounding = Mapping[LeafKey, GroundAction]

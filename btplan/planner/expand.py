@@ -16,7 +16,7 @@ from btplan.model import Atom, GroundAction, GroundLiteral, Task
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from btplan.planner.heuristic import RelaxedModel
+    from btplan.classical import RelaxedModel
 
 
 def condition_node(literal: GroundLiteral, task: Task) -> Node:

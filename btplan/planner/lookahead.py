@@ -26,7 +26,7 @@ from btplan.bt import Sequence as SequenceNode
 from btplan.model import Atom, GroundAction, GroundLiteral
 from btplan.planner.conflicts import guarantees
 from btplan.planner.expand import literal_of
-from btplan.planner.heuristic import RelaxedModel
+from btplan.classical import RelaxedModel
 
 
 def closest_first(

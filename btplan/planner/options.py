@@ -33,7 +33,7 @@ class PlannerOptions:
     `retries` starts a failed attempt over that many times, each time without one more
     achiever choice the failure is blamed on (btplan/planner/backjump.py).
     `search_stuck`, the last resort, plans a stuck condition by a complete search
-    (btplan/planner/search.py) and inserts the plan as a subtree. `goal_agenda` orders
+    (btplan/classical/search.py) and inserts the plan as a subtree. `goal_agenda` orders
     the goals by reasonable orders before the tree is built (btplan/planner/agenda.py);
     `state_agenda` adds the orders the initial state imposes (`agenda.state_orders`;
     plan() turns it on in a fallback strategy).
@@ -41,7 +41,7 @@ class PlannerOptions:
     (the world has not moved), after an expansion, up to that many expansions: Algorithm 1
     as published spends a tick of the world per expansion, which a sequential planner,
     planning before it acts, does not. `improve_plan`: offline planning shortens the
-    executed plan once found (btplan/planner/improve.py) and puts the shorter plan
+    executed plan once found (btplan/classical/improvement.py) and puts the shorter plan
     ahead of the tree (btplan/acting/offline/improved.py). `PlannerOptions.paper()` turns every
     departure from the paper off, for comparison.
     """

@@ -15,7 +15,7 @@ import math
 from collections.abc import Iterable
 
 from btplan.model import Atom, GroundAction, GroundLiteral
-from btplan.planner.heuristic import RelaxedModel
+from btplan.classical import RelaxedModel
 
 
 def white_knights(

@@ -5,9 +5,10 @@ Structural: a world satisfies it without importing the planner.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 
 from btplan.bt import World
+from btplan.grounding import Refiner
 from btplan.model import ActionTemplate, Atom, Parameter
 
 TYPE_CHECKING = False
@@ -16,8 +17,7 @@ if TYPE_CHECKING:
 else:
     Protocol = object  # a protocol only types: a plain base at run time
 
-Refiner = Callable[[ActionTemplate, Mapping[str, str], Parameter], list[str]]
-"""Supplies values for a `refined` parameter, best first (the paper's RefineActions)."""
+__all__ = ["PlanningWorld", "Refiner"]
 
 
 class PlanningWorld(World, Protocol):

@@ -23,8 +23,8 @@ from btplan.bt import Sequence as SequenceNode
 from btplan.model import WILDCARD, Atom, GroundAction, GroundLiteral, Task
 from btplan.planner.conflicts import guarantees, held_before, sequence_slots
 from btplan.planner.expand import GOAL_CHECK, action_node, condition_node, literal_of
-from btplan.planner.grounding import wildcard_instances
-from btplan.planner.mutex import Mutexes
+from btplan.grounding import wildcard_instances
+from btplan.classical import Mutexes
 
 
 class Engine(Protocol):

@@ -22,14 +22,14 @@ from collections import OrderedDict
 from collections.abc import Callable, Hashable, Sequence
 
 from btplan.model import ActionTemplate, Atom, Domain, GroundAction, Literal, Task
-from btplan.planner.heuristic import RelaxedModel
-from btplan.planner.mutex import Mutexes
+from btplan.classical import RelaxedModel
+from btplan.classical import Mutexes
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
     from typing import TypeVar
 
-    from btplan.planner.packed import PackedActions
+    from btplan.classical import PackedActions
 
     K = TypeVar("K", bound=Hashable)
     V = TypeVar("V")

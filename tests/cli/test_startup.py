@@ -20,7 +20,7 @@ HEAVY = ("rich", "pydantic", "pybullet", "numpy", "matplotlib", "email", "import
          "btplan.bt.formats.btcpp", "btplan.bt.formats.saved", "btplan.acting.live_view",
          "btplan.sweep", "btplan.worlds.pybullet", "typer", "click",
          "dataclasses", "inspect", "tempfile", "difflib", "traceback", "importlib.resources",
-         "random", "btplan.lang.writers", "btplan.planner.search", "btplan.planner.rescue",
+         "random", "btplan.lang.writers", "btplan.classical.search", "btplan.planner.rescue",
          "btplan.planner.backjump", "btplan.planner.protect", "btplan.bt.debug",
          "btplan.bt.parallel", "btplan.bt.trace", "btplan.bt.blackboard", "json", "signal",
          "contextvars", "typing")

@@ -1,4 +1,4 @@
-"""The lower bound on plan steps and costs (btplan/planner/bound.py), and plan improvement
+"""The lower bound on plan steps and costs (btplan/classical/bound.py), and plan improvement
 using it: LM-cut values worked out by hand, never above the shortest (or cheapest) plan,
 and what a bound that the plan reaches spares."""
 
@@ -13,9 +13,9 @@ import pytest
 from btplan.acting.offline import load, plan
 from btplan.model import Task
 from btplan.planner import AchieverIndex
-from btplan.planner.bound import Cuts, fewest_steps, no_better_plan
-from btplan.planner.improve import improve
-from btplan.planner.neighbourhood import Limits, PlanSpace
+from btplan.classical.bound import Cuts, fewest_steps, no_better_plan
+from btplan.classical.improvement import improve
+from btplan.classical.neighbourhood import Limits, PlanSpace
 from tests.planner.test_classic import validate
 from tests.planner.test_improve import gripper, space_of, walk
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import random
 
 from btplan.model import Atom
-from btplan.planner.grounding import Objects
+from btplan.grounding import Objects
 
 
 def scan(state: frozenset[Atom], predicate: str, args: list[str | None],

@@ -1,4 +1,4 @@
-"""Plan improvement (btplan/planner/improve.py): action elimination and plan-neighbourhood
+"""Plan improvement (btplan/classical/improvement.py): action elimination and plan-neighbourhood
 search, on small problems whose best plans are known."""
 
 from __future__ import annotations
@@ -10,8 +10,8 @@ from btplan.acting.offline import load, plan
 from btplan.lang.generators import generate
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex
-from btplan.planner.improve import eliminate, improve
-from btplan.planner.neighbourhood import Limits, PlanSpace
+from btplan.classical.improvement import eliminate, improve
+from btplan.classical.neighbourhood import Limits, PlanSpace
 from tests.planner.test_classic import validate
 
 WALK = """(define (domain walk)

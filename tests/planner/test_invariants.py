@@ -8,7 +8,7 @@ from btplan.lang.generators import GENERATORS
 from btplan.model import ActionTemplate, Atom, Domain, GroundLiteral, Literal, Predicate, Task
 from btplan.model import Parameter as P
 from btplan.planner import AchieverIndex, Mutexes
-from btplan.planner.invariants import MutexGroups
+from btplan.classical.invariants import MutexGroups
 
 
 def task_of(name: str, size: int) -> Task:

@@ -17,7 +17,7 @@ from btplan.acting.offline import planning as offline
 from btplan.errors import NoAchieverError
 from btplan.model import GroundLiteral, Task
 from btplan.planner import AchieverIndex, PlannerOptions
-from btplan.planner.packed import bits
+from btplan.classical.packed import bits
 from tests.planner.shapes import DOMAINS, atom, generated
 from tests.planner.test_classic import validate
 

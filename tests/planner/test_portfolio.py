@@ -11,7 +11,7 @@ from pathlib import Path
 from btplan.acting.offline import load
 from btplan.model import Task
 from btplan.planner import AchieverIndex
-from btplan.planner.search import SLICE, Portfolio
+from btplan.classical.search import SLICE, Portfolio
 from tests.planner.shapes import generated
 from tests.planner.test_classic import validate
 from tests.planner.test_lazy_search import toggle

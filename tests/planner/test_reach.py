@@ -10,7 +10,7 @@ import pytest
 from btplan.lang.generators import GENERATORS
 from btplan.lang.loader import load
 from btplan.model import Task
-from btplan.planner.heuristic import RelaxedModel
+from btplan.classical.heuristic import RelaxedModel
 
 DOOR = """(define (domain door) (:requirements :strips :typing :negative-preconditions)
   (:types room key)

@@ -17,7 +17,7 @@ import pytest
 from btplan.acting.offline import load
 from btplan.model import Task
 from btplan.planner import AchieverIndex
-from btplan.planner.packed import INFINITE, PackedActions, bits
+from btplan.classical.packed import INFINITE, PackedActions, bits
 from tests.planner.shapes import DOMAINS, atom, generated
 
 

@@ -21,7 +21,7 @@ from btplan.lang.generators import generate
 from btplan.model import Atom, GroundLiteral, Task
 from btplan.planner import AchieverIndex, PlannerOptions
 from btplan.planner.expand import not_through_pursued
-from btplan.planner.heuristic import RelaxedModel
+from btplan.classical.heuristic import RelaxedModel
 
 
 def task_of(tmp_path: Path, name: str, seed: int, **size: int) -> Task:

@@ -21,7 +21,7 @@ from btplan.bt import Action, Fallback, Sequence
 from btplan.model import Atom, GroundLiteral, Task
 from btplan.planner import AchieverIndex
 from btplan.planner.expand import atomic_bt, condition_node
-from btplan.planner.heuristic import RelaxedModel
+from btplan.classical.heuristic import RelaxedModel
 from tests.presets import departures
 
 DOMAINS = Path(__file__).resolve().parents[2] / "domains"

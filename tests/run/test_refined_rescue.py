@@ -19,7 +19,7 @@ from btplan.acting.loop import BlendedLoop
 from btplan.model import ActionTemplate, Atom, GroundAction, GroundLiteral, Parameter
 from btplan.planner.expand import literal_of
 from btplan.planner.rescue import regress
-from btplan.planner.search import SubgoalSearch, spell_out
+from btplan.classical.search import SubgoalSearch, spell_out
 from btplan.worlds.symbolic import SymbolicWorld
 from tests.run.test_refined_baselines import Refiner
 

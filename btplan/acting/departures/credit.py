@@ -21,7 +21,7 @@ import math
 from collections.abc import Sequence
 
 from btplan.model import Atom, GroundAction, GroundLiteral
-from btplan.planner.heuristic import RelaxedModel
+from btplan.classical import RelaxedModel
 
 
 def credit_goals(

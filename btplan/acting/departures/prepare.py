@@ -29,8 +29,8 @@ from itertools import repeat
 from btplan.bt import Composite, Fallback, Node
 from btplan.model import Atom, GroundAction, GroundLiteral, Task
 from btplan.planner.expand import condition_node, pursued
-from btplan.planner.heuristic import RelaxedModel
-from btplan.planner.mutex import Mutexes
+from btplan.classical import RelaxedModel
+from btplan.classical import Mutexes
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:

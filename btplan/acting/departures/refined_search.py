@@ -6,7 +6,7 @@ a pose at all: a condition stuck there stayed stuck, and the run ended where the
 had chosen an order it could not complete. Here the search plans with the actions
 grounded with what the world refines now, as a task-and-motion planner grounds its
 motions when it plans (the baselines' grounding, btplan.acting.refined), and with
-their wildcard deletes (`not near(_)`) written out (planner.search.spell_out).
+their wildcard deletes (`not near(_)`) written out (btplan.classical.spell_out).
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from typing import Any
 
 from btplan.acting.refined import RefinedGrounding, asks_world
 from btplan.model import Atom, GroundAction, GroundLiteral, Task
-from btplan.planner.search import MAX_STATES, SubgoalSearch, spell_out
+from btplan.classical import MAX_STATES, SubgoalSearch, spell_out
 
 
 class RefinedSearch:

@@ -54,7 +54,7 @@ class PlanStats:
     improve_seconds: float = 0.0
     """Time plan improvement took."""
     shortest: bool = False
-    """Whether a lower bound showed that no plan has fewer steps (btplan/planner/bound.py),
+    """Whether a lower bound showed that no plan has fewer steps (btplan/classical/bound.py),
     so plan improvement had nothing to look for."""
 
 

@@ -1,7 +1,7 @@
 """Offline planning's executed plan made shorter, and a tree that runs the shorter plan.
 
 Once backchaining (or the last resort) has a tree whose run from the initial state
-reaches the goal, btplan/planner/improve.py looks for a shorter plan within a share of
+reaches the goal, btplan/classical/improvement.py looks for a shorter plan within a share of
 the time. The user gets the plan (`--plan-out`) and the tree, and both must agree: the
 shorter plan goes into the tree ahead of the backchained tree, as the teleo-reactive
 steps the last resort's plans become (`rescue.plan_alternatives`, with what
@@ -28,10 +28,10 @@ from btplan.bt import Sequence as SequenceNode
 from btplan.model import GroundAction, GroundLiteral, Task
 from btplan.planner import AchieverIndex, condition_node
 from btplan.planner.expand import GOAL_CHECK, action_node
-from btplan.planner.improve import Improvement, improve
-from btplan.planner.neighbourhood import Limits, PlanSpace
-from btplan.planner.packed import PackedActions
-from btplan.planner.reach import building
+from btplan.classical import Improvement, improve
+from btplan.classical import Limits, PlanSpace
+from btplan.classical import PackedActions
+from btplan.classical import building
 from btplan.records import record
 from btplan.worlds.symbolic import SymbolicWorld
 

@@ -25,7 +25,7 @@ from btplan.bt import BehaviorTree
 from btplan.errors import BudgetExceededError, Interrupted, PlanningError
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex, PlannerOptions
-from btplan.planner.bound import fewest_steps, no_better_plan
+from btplan.classical import fewest_steps, no_better_plan
 from btplan.records import replace
 
 TYPE_CHECKING = False

@@ -17,7 +17,7 @@ from btplan.worlds.symbolic import SymbolicWorld
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:  # the search is loaded only when a plan run needs it
-    from btplan.planner.search import Portfolio, SearchRun
+    from btplan.classical import Portfolio, SearchRun
 
 WHOLE_STATES = 1_000_000
 """States the whole-goal search may expand; the time limit usually comes first."""

@@ -12,7 +12,7 @@ sets, so the fixpoint stays fast without extra dependencies.
 h^2 costs the square of the number of atoms in memory and more in time: beyond
 H2_MAX_ATOMS atoms (a 40-block blocksworld has 1,700, a 100-block one 10,000), and
 when the domain is given, the mutexes come from lifted invariants instead
-(btplan/planner/invariants.py): fewer pairs, found at a cost that does not grow
+(btplan/classical/invariants.py): fewer pairs, found at a cost that does not grow
 with the number of objects.
 """
 
@@ -21,8 +21,8 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Iterable, Sequence
 
 from btplan.model import Atom, Domain, GroundAction, GroundLiteral, matches
-from btplan.planner.invariants import MutexGroups
-from btplan.planner.reach import building
+from btplan.classical.invariants import MutexGroups
+from btplan.classical.reach import building
 
 H2_MAX_ATOMS = 2000
 """Above this many atoms, and given the domain, mutexes come from invariants."""

@@ -1,5 +1,8 @@
 """Binding template parameters to objects: the refinement step of the paper.
 
+Beneath both rooms of planning: the PA-BT steps (btplan.planner) bind the achievers of
+a condition, and the classical planner (btplan.classical) grounds the relaxed model.
+
 Parameters are bound one at a time; after each, every `where` constraint and every
 static precondition whose parameters are all bound is checked, so a wrong choice is
 cut as early as possible instead of after the full cross product. Static predicates
@@ -12,7 +15,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Container, Iterator, Mapping
+from collections.abc import Callable, Container, Iterator, Mapping
 
 from btplan.model import (
     EQUALITY,
@@ -24,7 +27,10 @@ from btplan.model import (
     Parameter,
     Task,
 )
-from btplan.planner.protocol import Refiner
+
+Refiner = Callable[[ActionTemplate, Mapping[str, str], Parameter], list[str]]
+"""Supplies values for a `refined` parameter, best first (the paper's RefineActions): a
+world's `refine`, which grounding asks instead of enumerating the parameter's type."""
 
 _NONE: frozenset[str] = frozenset()
 

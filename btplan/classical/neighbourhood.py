@@ -1,6 +1,6 @@
 """The states around a plan's trajectory, for plan-neighbourhood search (improve.py).
 
-A task is packed as bit masks (btplan/planner/packed.py); the neighbourhood of a plan
+A task is packed as bit masks (btplan/classical/packed.py); the neighbourhood of a plan
 is every state within `depth` steps of a state the plan passes through, found breadth
 first and kept with its edges, within a budget of states, memory and time. The cheapest
 path from the initial state to a goal state through it is then a plan at least as good
@@ -15,7 +15,7 @@ from array import array
 from collections.abc import Callable, Sequence
 
 from btplan.model import Atom, GroundAction, GroundLiteral
-from btplan.planner.packed import PackedActions, bits
+from btplan.classical.packed import PackedActions, bits
 from btplan.records import record
 
 MAX_STATES = 50_000

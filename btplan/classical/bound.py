@@ -25,7 +25,7 @@ from collections.abc import Iterable, Sequence
 TYPE_CHECKING = False
 if TYPE_CHECKING:
     from btplan.model import Atom, GroundLiteral
-    from btplan.planner.heuristic import RelaxedModel
+    from btplan.classical.heuristic import RelaxedModel
 
 INFINITE = float("inf")
 

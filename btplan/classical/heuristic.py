@@ -18,8 +18,8 @@ from collections.abc import Callable, Iterable
 from itertools import compress
 
 from btplan.model import ActionTemplate, Atom, GroundAction, Task, ground_literal, instantiate
-from btplan.planner.grounding import PLACEHOLDER, Objects, bindings
-from btplan.planner.reach import building, reachable_bindings
+from btplan.grounding import PLACEHOLDER, Objects, bindings
+from btplan.classical.reach import building, reachable_bindings
 
 COST_CACHE = 8
 """States whose h_add costs are kept (planning goes back and forth between a few)."""
@@ -39,7 +39,7 @@ class RelaxedModel:
         reach: bool = True,
     ) -> None:
         """`reach`: only the groundings relaxed-reachable from the initial state
-        (btplan/planner/reach.py); off, every grounding the static facts allow."""
+        (btplan/classical/reach.py); off, every grounding the static facts allow."""
         self.actions: list[GroundAction] = []
         self.complete = True
         """Whether no action template had more groundings than `limit` (then the model

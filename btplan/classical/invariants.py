@@ -1,6 +1,6 @@
 """Mutex groups from lifted invariants: sets of atoms of which at most one ever holds.
 
-h^2 (btplan/planner/mutex.py) finds every mutex pair but works on pairs of ground
+h^2 (btplan/classical/mutex.py) finds every mutex pair but works on pairs of ground
 atoms: a 200-block blocksworld has 40,000 atoms and 800 million pairs. Large tasks
 use these groups instead, found on the action templates, as classical planners do
 (Helmert 2009 calls them monotonicity invariants), at a cost independent of the

@@ -15,7 +15,7 @@ with its parent's estimate until then), two estimates (h_FF and the count of fac
 landmarks not yet reached on the path), and for each a second queue holding only the
 children of preferred actions (those of the relaxed plan that can run now); the
 queues take turns, and every time an estimate improves the preferred queues get
-BOOST turns ahead. States are ints (btplan/planner/packed.py).
+BOOST turns ahead. States are ints (btplan/classical/packed.py).
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ import time
 from collections.abc import Callable, Iterable, Sequence
 
 from btplan.model import Atom, GroundAction, GroundLiteral, matches
-from btplan.planner.packed import INFINITE, PackedActions, bits
+from btplan.classical.packed import INFINITE, PackedActions, bits
 
 MAX_STATES = 2000
 """States expanded (each one h_FF evaluation) by one search before it gives up."""

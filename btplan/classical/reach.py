@@ -19,7 +19,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 
 from btplan.model import EQUALITY, ActionTemplate, Atom, Literal, Task
-from btplan.planner.grounding import Objects
+from btplan.grounding import Objects
 
 Binding = dict[str, str]
 

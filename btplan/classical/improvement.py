@@ -19,8 +19,8 @@ Plan Improvement", ICAPS 2010):
   the one that last found a better plan (PATIENCE), or no new state is left to reach
   (the path found is then the best there is).
 
-Both work on the grounded actions packed as bit masks (btplan/planner/packed.py); the
-neighbourhoods are btplan/planner/neighbourhood.py's.
+Both work on the grounded actions packed as bit masks (btplan/classical/packed.py); the
+neighbourhoods are btplan/classical/neighbourhood.py's.
 A plan is better when it costs less, or costs the same and has fewer steps. Plans with
 an action the packed actions do not hold (deletes by pattern) are left as they are.
 """
@@ -30,7 +30,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from btplan.model import GroundAction
-from btplan.planner.neighbourhood import Limits, Neighbourhood, OutOfTime, PlanSpace
+from btplan.classical.neighbourhood import Limits, Neighbourhood, OutOfTime, PlanSpace
 from btplan.records import record
 
 PATIENCE = 10
