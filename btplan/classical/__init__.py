@@ -24,7 +24,6 @@ if TYPE_CHECKING:
     from btplan.classical.mutex import Mutexes
     from btplan.classical.neighbourhood import Limits, PlanSpace
     from btplan.classical.packed import PackedActions
-    from btplan.classical.reach import building
     from btplan.classical.search import MAX_STATES, Portfolio, SearchRun, SubgoalSearch, spell_out
 
 _HOMES = {
@@ -35,7 +34,6 @@ _HOMES = {
     "Mutexes": "mutex",
     "Limits": "neighbourhood", "PlanSpace": "neighbourhood",
     "PackedActions": "packed",
-    "building": "reach",
     "MAX_STATES": "search", "Portfolio": "search", "SearchRun": "search",
     "SubgoalSearch": "search", "spell_out": "search",
 }
@@ -60,7 +58,6 @@ __all__ = [
     "RelaxedModel",
     "SearchRun",
     "SubgoalSearch",
-    "building",
     "fewest_steps",
     "improve",
     "no_better_plan",

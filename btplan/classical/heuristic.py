@@ -19,7 +19,8 @@ from itertools import compress
 
 from btplan.model import ActionTemplate, Atom, GroundAction, Task, ground_literal, instantiate
 from btplan.grounding import PLACEHOLDER, Objects, bindings
-from btplan.classical.reach import building, reachable_bindings
+from btplan.classical.reach import reachable_bindings
+from btplan.collector import building
 
 COST_CACHE = 8
 """States whose h_add costs are kept (planning goes back and forth between a few)."""

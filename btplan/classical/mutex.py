@@ -22,7 +22,7 @@ from collections.abc import Callable, Collection, Iterable, Sequence
 
 from btplan.model import Atom, Domain, GroundAction, GroundLiteral, matches
 from btplan.classical.invariants import MutexGroups
-from btplan.classical.reach import building
+from btplan.collector import building
 
 H2_MAX_ATOMS = 2000
 """Above this many atoms, and given the domain, mutexes come from invariants."""

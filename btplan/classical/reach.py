@@ -14,32 +14,12 @@ in some relaxed state reached from the initial state, in the old model's order.
 
 from __future__ import annotations
 
-import gc
 from collections.abc import Iterator
-from contextlib import contextmanager
 
-from btplan.model import EQUALITY, ActionTemplate, Atom, Literal, Task
 from btplan.grounding import Objects
+from btplan.model import EQUALITY, ActionTemplate, Atom, Literal, Task
 
 Binding = dict[str, str]
-
-
-@contextmanager
-def building() -> Iterator[None]:
-    """Pause the cyclic garbage collector while a model of many small objects is built.
-
-    Ground actions, atoms and index lists hold no reference cycles, so the collector
-    frees nothing among them, yet it scanned them each time allocations outnumbered
-    frees: 2 of 4.6 s of the relaxed model of parking p02. (Freezing them after, out
-    of the collector's reach for good, would also keep whatever cycles other objects
-    of the process form then, such as bindings of native libraries, until exit.)"""
-    enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if enabled:
-            gc.enable()
 
 
 class _Facts:

@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
+from btplan.collector import building
 from btplan.errors import InputError, Span
 from btplan.io import STDIO, read_text
 from btplan.lang.names import check_unique, suggest
@@ -121,6 +122,10 @@ def _defined_twice(again: DomainSyntax, first: DomainSyntax) -> None:
 def collect(paths: Sequence[str]) -> Collection:
     """Read every input, check every domain, and check each problem against its domain.
 
+    The garbage collector is paused meanwhile: syntax trees and models are many small
+    objects without cycles, and its passes over them freed nothing (9 of 58 ms of a
+    67 KB PDDL domain).
+
     A problem binds to the domain of its own file when that has the name it is written
     for, else to the first input domain of that name: two files may each define their
     own `blocksworld`, and a file of problems alone finds its domain in another file.
@@ -131,6 +136,11 @@ def collect(paths: Sequence[str]) -> Collection:
         raise InputError("no input files given")
     if sum(1 for p in paths if p == STDIO) > 1:
         raise InputError("standard input ('-') can be read only once")
+    with building():
+        return _collected(paths)
+
+
+def _collected(paths: Sequence[str]) -> Collection:
     report = Report()
     nothing: tuple[list[DomainSyntax], list[ProblemSyntax]] = ([], [])
     files = [report.attempt(_read_nonempty, path) or nothing for path in paths]
@@ -227,6 +237,11 @@ def load_problem(domain: Domain, path: str, problem: str | None = None) -> Task:
     models planning builds for it (btplan/planner/reuse.py) for the next task. A domain
     in the file is not read again: the problems are checked against `domain`.
     """
+    with building():
+        return _problem_of(domain, path, problem)
+
+
+def _problem_of(domain: Domain, path: str, problem: str | None) -> Task:
     report = Report()
     _, syntaxes = _read_nonempty(path)
     check_unique((p.name for p in syntaxes), "problem", report)

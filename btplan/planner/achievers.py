@@ -31,7 +31,7 @@ from btplan.classical import RelaxedModel
 from btplan.classical import Mutexes
 from btplan.planner.options import PlannerOptions
 from btplan.planner.protocol import Refiner
-from btplan.classical import building
+from btplan.collector import building
 from btplan.planner.reuse import Grounded, kept_for
 
 TYPE_CHECKING = False

@@ -31,7 +31,7 @@ from btplan.planner.expand import GOAL_CHECK, action_node
 from btplan.classical import Improvement, improve
 from btplan.classical import Limits, PlanSpace
 from btplan.classical import PackedActions
-from btplan.classical import building
+from btplan.collector import building
 from btplan.records import record
 from btplan.worlds.symbolic import SymbolicWorld
 
