@@ -21,6 +21,7 @@ FORBIDDEN: dict[str, tuple[str, ...]] = {
     "btplan.model": ("btplan",),
     "btplan.atoms": ("btplan",),
     "btplan.errors": ("btplan",),
+    "btplan.collector": ("btplan",),
     "btplan.lang": ("btplan.bt", "btplan.planner", "btplan.worlds", "btplan.cli", "btplan.acting",
                     "btplan.sweep"),
     "btplan.bt": ("btplan.model", "btplan.atoms", "btplan.lang", "btplan.planner", "btplan.worlds", "btplan.cli",
