@@ -4,8 +4,8 @@ Each benchmark writes a plain-text table to bench/results/ (what the script prin
 after a `$ python bench/...` line). The pages show those numbers as tables; a plot is
 added where they form a series: memory and speed against run length (soak), time and
 memory against problem width (limits), the cost of each monitor and the time to show a
-tree (monitor, browser view), and a slow failing skill under each preset (acting
-halts). Drawing from the recorded files, not from new runs, keeps a plot and the table
+tree (monitor, browser view), a slow failing skill under each preset (acting
+halts), and each BTPG goal's time beside the fastest BT planner's (btpg). Drawing from the recorded files, not from new runs, keeps a plot and the table
 beside it the same measurement.
 
     python bench/plot_results.py            # every plot, into docs/images/results-*.png
@@ -141,6 +141,24 @@ def acting_halts(fig: Figure) -> None:
     style(halts, "actions halted", "ticks each skill takes")
 
 
+def btpg(fig: Figure) -> None:
+    """Each goal's time: btplan beside the fastest BTPG planner of that goal."""
+    goals: list[tuple[float, float, str]] = []
+    for line in lines_of("btpg_rw_single.txt"):
+        m = re.match(r"\s*\d+ (\S+)\s+(OBTEA|HBTP|BTExpansion)\s+([\d.]+)\s+([\d.]+)\s", line)
+        if m:
+            goals.append((float(m.group(3)), float(m.group(4)), m.group(2)))
+    ax = fig.subplots(1, 1)
+    for planner in ("BTExpansion", "OBTEA", "HBTP"):
+        mine = [g for g in goals if g[2] == planner]
+        ax.scatter([g[0] for g in mine], [g[1] for g in mine], s=14,
+                   label=f"goals where {planner} is the fastest BTPG planner")
+    top = max(max(g[0], g[1]) for g in goals) * 1.5
+    ax.plot([0.03, top], [0.03, top], color="grey", linewidth=0.8, label="equal time")
+    style(ax, "btplan, ms (problem read + plan)", "the fastest BTPG planner, ms (process())",
+          log_x=True, log_y=True)
+
+
 # --- drawing ---------------------------------------------------------------------------
 
 
@@ -164,6 +182,7 @@ PLOTS: dict[str, tuple[str, Callable[[Figure], None]]] = {
     "limits": ("results-limits.png", limits),
     "monitor": ("results-monitor.png", monitor),
     "acting_halts": ("results-acting-halts.png", acting_halts),
+    "btpg": ("results-btpg.png", btpg),
 }
 
 
