@@ -92,13 +92,12 @@ def pa_bt(rng: random.Random, depth: int, branching: int, counter: list[int]) ->
 
 
 def goal_forest(nodes: int, seed: int) -> Shape:
-    """Enough goal subtrees under a Parallel to reach about `nodes` nodes (depth 5 from
-    3,000 nodes on, depth 4 below, depth 1 for a handful)."""
+    """Enough depth-5 goal subtrees under a Parallel to reach about `nodes` nodes (depth 4
+    below 3,000 nodes)."""
     rng, counter = random.Random(seed), [0]
-    depth = 5 if nodes >= 3000 else 4 if nodes >= 100 else 1
     goals: list[Shape] = []
     while 1 + sum(size(g) for g in goals) < nodes:
-        goals.append(pa_bt(rng, depth, 3, counter))
+        goals.append(pa_bt(rng, 4 if nodes < 3000 else 5, 3, counter))
     return Shape("parallel", "", goals)
 
 
