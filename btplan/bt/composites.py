@@ -27,7 +27,9 @@ from btplan.bt.world import World
 
 
 class _Control(Composite):
-    """Shared tick loop; `stop_on` is the child status that ends the loop early."""
+    """Shared state and the memory loop; `stop_on` is the child status that ends the loop
+    early. The memoryless loop, which every tree the planner builds ticks, is written out
+    in Sequence and Fallback (see `Sequence.tick`)."""
 
     __slots__ = ("_current", "memory")
     stop_on: Status = FAILURE
@@ -38,6 +40,7 @@ class _Control(Composite):
         self._current = 0
 
     def tick(self, world: World) -> Status:
+        """The loop with memory: resume at the child that was RUNNING."""
         children = self.children
         start = self._current if self.memory else 0
         stop_on = self.stop_on
@@ -61,8 +64,13 @@ class _Control(Composite):
                 children[j].halt(world)
 
     def halt(self, world: World) -> None:
+        """Rewind, then halt every child that is not idle (Composite.halt written out: a
+        reactive tree halts a preempted subtree node by node)."""
         self._current = 0
-        super().halt(world)
+        for child in self.children:
+            if child.status is not IDLE:
+                child.halt(world)
+        self.status = IDLE
 
 
 class Sequence(_Control):
@@ -76,6 +84,28 @@ class Sequence(_Control):
     kind = "Sequence"
     stop_on = FAILURE
 
+    def tick(self, world: World) -> Status:
+        """Memoryless: every child from the first, until one fails or runs (see the class).
+
+        The loop is the engine's hottest code, so it keeps to what a reactive tick needs:
+        no index (the deciding child is found again only when children follow it), no
+        rewind counter, constants rather than `stop_on`.
+        """
+        if self.memory:
+            return _Control.tick(self, world)
+        children = self.children
+        for child in children:
+            status = child.tick(world)
+            if status is FAILURE or status is RUNNING:
+                if child is not children[-1]:
+                    for other in children[children.index(child) + 1:]:
+                        if other.status is not IDLE:
+                            other.halt(world)
+                self.status = status
+                return status
+        self.status = SUCCESS
+        return SUCCESS
+
 
 class Fallback(_Control):
     """Ticks children left to right while they fail (the paper's "?").
@@ -87,3 +117,21 @@ class Fallback(_Control):
     __slots__ = ()
     kind = "Fallback"
     stop_on = SUCCESS
+
+    def tick(self, world: World) -> Status:
+        """Memoryless: every child from the first, until one succeeds or runs (see the class
+        and `Sequence.tick`)."""
+        if self.memory:
+            return _Control.tick(self, world)
+        children = self.children
+        for child in children:
+            status = child.tick(world)
+            if status is SUCCESS or status is RUNNING:
+                if child is not children[-1]:
+                    for other in children[children.index(child) + 1:]:
+                        if other.status is not IDLE:
+                            other.halt(world)
+                self.status = status
+                return status
+        self.status = FAILURE
+        return FAILURE
