@@ -14,6 +14,11 @@ A child that answers SKIPPED (BT.CPP 4's `_skipIf`) is passed over. The variants
 `btcpp_composites.py` that trees read from BT.CPP XML use also answer SKIPPED when all
 children were skipped; these stay free of that count.
 
+The memoryless loops ask a plain `Condition` child the world in place, doing what its
+`tick` does (status from `world.check`), because a Python call per condition was a
+large share of a reactive tick. Only the exact class is treated so: a subclass (a
+custom leaf, a traced or guarded twin) goes through its own `tick`.
+
 With memory (memory=True; BT.CPP Sequence/Fallback): a RUNNING child is resumed on the
 next tick without re-ticking the children before it. The index is reset when the
 node returns SUCCESS or FAILURE, and when it is halted.
@@ -21,6 +26,7 @@ node returns SUCCESS or FAILURE, and when it is halted.
 
 from __future__ import annotations
 
+from btplan.bt.leaves import Condition
 from btplan.bt.node import Composite, Node
 from btplan.bt.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
 from btplan.bt.world import World
@@ -95,14 +101,21 @@ class Sequence(_Control):
             return _Control.tick(self, world)
         children = self.children
         for child in children:
-            status = child.tick(world)
-            if status is FAILURE or status is RUNNING:
-                if child is not children[-1]:
-                    for other in children[children.index(child) + 1:]:
-                        if other.status is not IDLE:
-                            other.halt(world)
-                self.status = status
-                return status
+            if type(child) is Condition:  # asked in place, see the module
+                if world.check(child.key):
+                    child.status = SUCCESS
+                    continue
+                child.status = status = FAILURE
+            else:
+                status = child.tick(world)
+                if status is not FAILURE and status is not RUNNING:
+                    continue
+            if child is not children[-1]:
+                for other in children[children.index(child) + 1:]:
+                    if other.status is not IDLE:
+                        other.halt(world)
+            self.status = status
+            return status
         self.status = SUCCESS
         return SUCCESS
 
@@ -125,13 +138,20 @@ class Fallback(_Control):
             return _Control.tick(self, world)
         children = self.children
         for child in children:
-            status = child.tick(world)
-            if status is SUCCESS or status is RUNNING:
-                if child is not children[-1]:
-                    for other in children[children.index(child) + 1:]:
-                        if other.status is not IDLE:
-                            other.halt(world)
-                self.status = status
-                return status
+            if type(child) is Condition:  # asked in place, see the module
+                if not world.check(child.key):
+                    child.status = FAILURE
+                    continue
+                child.status = status = SUCCESS
+            else:
+                status = child.tick(world)
+                if status is not SUCCESS and status is not RUNNING:
+                    continue
+            if child is not children[-1]:
+                for other in children[children.index(child) + 1:]:
+                    if other.status is not IDLE:
+                        other.halt(world)
+            self.status = status
+            return status
         self.status = FAILURE
         return FAILURE
