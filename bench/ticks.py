@@ -206,25 +206,30 @@ class Facts:
 
 
 class FlipWorld:
-    """Conditions are members of `facts.now`; actions in `running` stay RUNNING, others
-    succeed; `halts` counts the actions halted while RUNNING."""
+    """Conditions are members of `now`; actions in `running` stay RUNNING, others succeed;
+    `halts` counts the actions halted while RUNNING. Facts are held as btplan's leaf keys,
+    so a check is one set lookup, as in the other engines' leaves."""
 
-    def __init__(self, facts: Facts, running: frozenset[str]) -> None:
-        self.facts = facts
-        self.running = running
+    def __init__(self, now: frozenset[LeafKey], running: frozenset[str]) -> None:
+        self.now = now
+        self.running = keys(running)
         self.halts = 0
 
     def check(self, key: LeafKey) -> bool:
-        return key[0] in self.facts.now
+        return key in self.now
 
     def start(self, key: LeafKey) -> Status:
-        return RUNNING if key[0] in self.running else SUCCESS
+        return RUNNING if key in self.running else SUCCESS
 
     def step(self, key: LeafKey) -> Status:
-        return RUNNING if key[0] in self.running else SUCCESS
+        return RUNNING if key in self.running else SUCCESS
 
     def halt(self, key: LeafKey) -> None:
         self.halts += 1
+
+
+def keys(labels: frozenset[str]) -> frozenset[LeafKey]:
+    return frozenset((label, ()) for label in labels)
 
 
 def build_btplan(shape: Shape) -> Node:
@@ -239,23 +244,21 @@ def build_btplan(shape: Shape) -> Node:
 
 
 def btplan_engine(shape: Shape, plan: Scenario) -> Engine:
-    facts = Facts(plan.even)
-    tree, world = BehaviorTree(build_btplan(shape)), FlipWorld(facts, plan.running)
-    odd, even = plan.odd, plan.even
+    odd, even = keys(plan.odd), keys(plan.even)
+    tree, world = BehaviorTree(build_btplan(shape)), FlipWorld(even, plan.running)
 
     def period() -> None:
-        facts.now = odd
+        world.now = odd
         tree.tick(world)
-        facts.now = even
+        world.now = even
         tree.tick(world)
 
-    counted, counts = BehaviorTree(build_btplan(shape)), Facts(plan.even)
-    counting = FlipWorld(counts, plan.running)
+    counted, counting = BehaviorTree(build_btplan(shape)), FlipWorld(even, plan.running)
     recorder = TickRecorder()
     recorder.attach(counted)
-    trace = []
+    trace: list[tuple[int, int | None, str]] = []
     for tick in range(1, COUNTED_TICKS + 1):
-        counts.now = odd if tick % 2 else even
+        counting.now = odd if tick % 2 else even
         halts = counting.halts
         status = counted.tick(counting)
         assert recorder.last is not None
