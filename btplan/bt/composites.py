@@ -26,7 +26,7 @@ node returns SUCCESS or FAILURE, and when it is halted.
 
 from __future__ import annotations
 
-from btplan.bt.leaves import Condition
+from btplan.bt.leaves import Action, Condition
 from btplan.bt.node import Composite, Node
 from btplan.bt.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
 from btplan.bt.world import World
@@ -71,11 +71,22 @@ class _Control(Composite):
 
     def halt(self, world: World) -> None:
         """Rewind, then halt every child that is not idle (Composite.halt written out: a
-        reactive tree halts a preempted subtree node by node)."""
+        reactive tree halts a preempted subtree node by node). A plain Condition or Action
+        child is halted in place, as its own `halt` would: most nodes of a preempted
+        subtree are leaves."""
         self._current = 0
         for child in self.children:
-            if child.status is not IDLE:
-                child.halt(world)
+            status = child.status
+            if status is not IDLE:
+                cls = type(child)
+                if cls is Condition:
+                    child.status = IDLE
+                elif cls is Action:
+                    if status is RUNNING:
+                        world.halt(child.key)
+                    child.status = IDLE
+                else:
+                    child.halt(world)
         self.status = IDLE
 
 
