@@ -105,8 +105,8 @@ class Sequence(_Control):
         """Memoryless: every child from the first, until one fails or runs (see the class).
 
         The loop is the engine's hottest code, so it keeps to what a reactive tick needs:
-        no index (the deciding child is found again only when children follow it), no
-        rewind counter, constants rather than `stop_on`.
+        no index (the deciding child is found again only when more than one child follows
+        it), no rewind counter, constants rather than `stop_on`.
         """
         if self.memory:
             return _Control.tick(self, world)
@@ -121,10 +121,15 @@ class Sequence(_Control):
                 status = child.tick(world)
                 if status is not FAILURE and status is not RUNNING:
                     continue
-            if child is not children[-1]:
-                for other in children[children.index(child) + 1:]:
-                    if other.status is not IDLE:
-                        other.halt(world)
+            last = children[-1]
+            if child is not last:
+                if children[-2] is child:  # Fallback(condition, Sequence) decided early
+                    if last.status is not IDLE:
+                        last.halt(world)
+                else:
+                    for other in children[children.index(child) + 1:]:
+                        if other.status is not IDLE:
+                            other.halt(world)
             self.status = status
             return status
         self.status = SUCCESS
@@ -158,10 +163,15 @@ class Fallback(_Control):
                 status = child.tick(world)
                 if status is not SUCCESS and status is not RUNNING:
                     continue
-            if child is not children[-1]:
-                for other in children[children.index(child) + 1:]:
-                    if other.status is not IDLE:
-                        other.halt(world)
+            last = children[-1]
+            if child is not last:
+                if children[-2] is child:  # Fallback(condition, Sequence) decided early
+                    if last.status is not IDLE:
+                        last.halt(world)
+                else:
+                    for other in children[children.index(child) + 1:]:
+                        if other.status is not IDLE:
+                            other.halt(world)
             self.status = status
             return status
         self.status = FAILURE
