@@ -14,10 +14,12 @@ A child that answers SKIPPED (BT.CPP 4's `_skipIf`) is passed over. The variants
 `btcpp_composites.py` that trees read from BT.CPP XML use also answer SKIPPED when all
 children were skipped; these stay free of that count.
 
-The memoryless loops ask a plain `Condition` child the world in place, doing what its
-`tick` does (status from `world.check`), because a Python call per condition was a
-large share of a reactive tick. Only the exact class is treated so: a subclass (a
-custom leaf, a traced or guarded twin) goes through its own `tick`.
+The memoryless loops ask the world in place for a plain `Condition` child, doing what
+its `tick` does (status from `world.check`), because a Python call per leaf was a large
+share of a reactive tick; Sequence does the same for a plain `Action` (`world.start`,
+or `world.step` when RUNNING), the last child of every PA-BT Sequence, and both halt
+such leaves in place. Only the exact classes are treated so: a subclass (a custom
+leaf, a traced or guarded twin) goes through its own `tick` and `halt`.
 
 With memory (memory=True; BT.CPP Sequence/Fallback): a RUNNING child is resumed on the
 next tick without re-ticking the children before it. The index is reset when the
@@ -112,14 +114,19 @@ class Sequence(_Control):
             return _Control.tick(self, world)
         children = self.children
         for child in children:
-            if type(child) is Condition:  # asked in place, see the module
+            cls = type(child)
+            if cls is Condition:  # asked in place, see the module
                 if world.check(child.key):
                     child.status = SUCCESS
                     continue
                 child.status = status = FAILURE
             else:
-                status = child.tick(world)
-                if status is not FAILURE and status is not RUNNING:
+                if cls is Action:  # in place too: a PA-BT Sequence ends with its action
+                    status = child.status = (world.step(child.key) if child.status is RUNNING
+                                             else world.start(child.key))
+                else:
+                    status = child.tick(world)
+                if status is SUCCESS or status is not FAILURE and status is not RUNNING:
                     continue
             last = children[-1]
             if child is not last:
