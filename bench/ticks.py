@@ -308,7 +308,7 @@ def btcpp_xml(shape: Shape, leaf: Callable[[Shape], ET.Element], counted: bool) 
 
 def python_leaves_engine(shape: Shape, plan: Scenario) -> Engine:
     """BT.CPP's controls, each leaf a Python callback of its own registered ID."""
-    import behaviortreepy as bt
+    import behaviortreepy as bt  # type: ignore[import-untyped]
 
     ok, no, run = bt.NodeStatus.SUCCESS, bt.NodeStatus.FAILURE, bt.NodeStatus.RUNNING
     names = {ok: "SUCCESS", no: "FAILURE", run: "RUNNING"}

@@ -80,10 +80,9 @@ class _Control(Composite):
         for child in self.children:
             status = child.status
             if status is not IDLE:
-                cls = type(child)
-                if cls is Condition:
+                if type(child) is Condition:
                     child.status = IDLE
-                elif cls is Action:
+                elif type(child) is Action:
                     if status is RUNNING:
                         world.halt(child.key)
                     child.status = IDLE
@@ -114,14 +113,13 @@ class Sequence(_Control):
             return _Control.tick(self, world)
         children = self.children
         for child in children:
-            cls = type(child)
-            if cls is Condition:  # asked in place, see the module
+            if type(child) is Condition:  # asked in place, see the module
                 if world.check(child.key):
                     child.status = SUCCESS
                     continue
                 child.status = status = FAILURE
             else:
-                if cls is Action:  # in place too: a PA-BT Sequence ends with its action
+                if type(child) is Action:  # in place too: a PA-BT Sequence ends with its action
                     status = child.status = (world.step(child.key) if child.status is RUNNING
                                              else world.start(child.key))
                 else:
@@ -130,7 +128,7 @@ class Sequence(_Control):
                     continue
             last = children[-1]
             if child is not last:
-                if children[-2] is child:  # Fallback(condition, Sequence) decided early
+                if children[-2] is child:  # a precondition before the action
                     if last.status is not IDLE:
                         last.halt(world)
                 else:
@@ -172,7 +170,7 @@ class Fallback(_Control):
                     continue
             last = children[-1]
             if child is not last:
-                if children[-2] is child:  # Fallback(condition, Sequence) decided early
+                if children[-2] is child:  # the condition before the Sequence
                     if last.status is not IDLE:
                         last.halt(world)
                 else:
