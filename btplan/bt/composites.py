@@ -28,10 +28,17 @@ node returns SUCCESS or FAILURE, and when it is halted.
 
 from __future__ import annotations
 
+import types
+
 from btplan.bt.leaves import Action, Condition
 from btplan.bt.node import Composite, Node
 from btplan.bt.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
 from btplan.bt.world import World
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
 
 
 class _Control(Composite):
@@ -75,20 +82,36 @@ class _Control(Composite):
         """Rewind, then halt every child that is not idle (Composite.halt written out: a
         reactive tree halts a preempted subtree node by node). A plain Condition or Action
         child is halted in place, as its own `halt` would: most nodes of a preempted
-        subtree are leaves."""
+        subtree are leaves. The child's class is tested before its status is read, so
+        that each status read or write below sees one class (see `_own_copy`)."""
         self._current = 0
         for child in self.children:
-            status = child.status
-            if status is not IDLE:
-                if type(child) is Condition:
-                    child.status = IDLE
-                elif type(child) is Action:
-                    if status is RUNNING:
-                        world.halt(child.key)
-                    child.status = IDLE
-                else:
-                    child.halt(world)
+            if type(child) is Condition:
+                child.status = IDLE
+            elif type(child) is Action:
+                if child.status is RUNNING:
+                    world.halt(child.key)
+                child.status = IDLE
+            elif child.status is not IDLE:
+                child.halt(world)
         self.status = IDLE
+
+
+def _own_copy(method: Callable[[_Control, World], None]) -> Any:
+    """`method` with a code object of its own, for one subclass.
+
+    CPython (3.11 on) specialises each attribute read and write of a function's code
+    for the one class it keeps meeting there, and falls back to a slower generic lookup
+    where classes alternate. `_Control.halt`, shared by Sequence and Fallback, met both
+    (and both as children); with a copy each, every such access in a PA-BT tree sees
+    one class.
+    """
+    assert isinstance(method, types.FunctionType)
+    copy = types.FunctionType(method.__code__.replace(), method.__globals__,
+                              method.__name__, method.__defaults__, method.__closure__)
+    copy.__doc__, copy.__qualname__ = method.__doc__, method.__qualname__
+    copy.__annotations__ = method.__annotations__
+    return copy
 
 
 class Sequence(_Control):
@@ -101,6 +124,7 @@ class Sequence(_Control):
     __slots__ = ()
     kind = "Sequence"
     stop_on = FAILURE
+    halt = _own_copy(_Control.halt)
 
     def tick(self, world: World) -> Status:
         """Memoryless: every child from the first, until one fails or runs (see the class).
@@ -151,6 +175,7 @@ class Fallback(_Control):
     __slots__ = ()
     kind = "Fallback"
     stop_on = SUCCESS
+    halt = _own_copy(_Control.halt)
 
     def tick(self, world: World) -> Status:
         """Memoryless: every child from the first, until one succeeds or runs (see the class
