@@ -1,4 +1,5 @@
-"""The tick benchmark compares like with like: both engines reach the same nodes per tick."""
+"""The tick benchmark compares like with like: every engine reaches the same nodes, halts the
+same actions and answers the same status, tick by tick, on trees whose facts flip."""
 
 from __future__ import annotations
 
@@ -10,10 +11,8 @@ from types import ModuleType
 
 import pytest
 
-from btplan.bt import BehaviorTree
-from btplan.bt.trace import TickRecorder
-
 pytest.importorskip("py_trees")
+pytest.importorskip("behaviortreepy")
 BENCH = Path(__file__).resolve().parents[2] / "bench" / "ticks.py"
 
 
@@ -26,20 +25,41 @@ def bench() -> ModuleType:
     return module
 
 
-@pytest.mark.parametrize("nodes", [300, 1000])
-def test_both_engines_reach_the_same_nodes_and_stay_running(nodes: int) -> None:
+@pytest.mark.parametrize(("nodes", "seed"), [(300, 1), (1000, 3)])
+def test_every_engine_reaches_and_halts_the_same_nodes(nodes: int, seed: int) -> None:
     ticks = bench()
-    shape = ticks.goal_forest(nodes, seed=3)
+    shape = ticks.goal_forest(nodes, seed)
     assert ticks.size(shape) >= nodes
-    true, running = ticks.facts(shape, random.Random(3))
-    _ours, n_ours, s_ours = ticks.btplan_engine(shape, true, running)
-    _theirs, n_theirs, s_theirs = ticks.py_trees_engine(shape, true, running)
-    assert (n_ours, s_ours) == (n_theirs, s_theirs) == (n_ours, "RUNNING")
-    assert 10 < n_ours < ticks.size(shape)
-    tree = BehaviorTree(ticks.build_btplan(shape))
-    recorder = TickRecorder()
-    recorder.attach(tree)
-    world = ticks.SetWorld({(c, ()) for c in true}, {(a, ()) for a in running})
-    for _ in range(3):
-        tree.tick(world)
-    assert [len(t.nodes) for t in recorder.traces] == [n_ours] * 3, "same work every tick"
+    plan = ticks.scenario(shape, random.Random(seed))
+    found = ticks.engines(shape, plan)  # raises unless their counted ticks agree
+    assert [e.name for e in found] == ["btplan", "BT.CPP Python leaves", "BT.CPP C++ leaves",
+                                       "py_trees"]
+    traces = [[(n, s) for n, _, s in e.trace] for e in found]
+    assert all(t == traces[0] for t in traces)
+    assert all(s == "RUNNING" for _, s in traces[0])
+    assert found[0].trace[-2:] == found[1].trace[-2:] == found[3].trace[-2:]
+    assert sum(h for _, h, _ in found[0].trace[-2:]) > 0, "flipping facts halt actions"
+    assert 10 < found[0].per_period() < 2 * ticks.size(shape)
+
+
+def test_a_disagreement_is_caught() -> None:
+    ticks = bench()
+    shape = ticks.goal_forest(300, 1)
+    plan = ticks.scenario(shape, random.Random(1))
+    ours = ticks.btplan_engine(shape, plan)
+    skewed = ticks.Engine("other", ours.period, [(n + 1, h, s) for n, h, s in ours.trace])
+    with pytest.raises(AssertionError, match="tick 1: btplan reached"):
+        ticks.check_agreement([ours, skewed])
+
+
+def test_a_short_run_of_the_btcpp_comparison_prints_the_table_and_the_target() -> None:
+    ticks = bench()
+    row = ticks.measure(300, 1, seconds=0.06, rounds=1, with_py_trees=False)
+    assert row.halts > 0 and row.reached > 10
+    assert set(row.rates) == {"btplan", "BT.CPP Python leaves", "BT.CPP C++ leaves"}
+    assert all(rate > 0 for rate in row.rates.values())
+    lines = ticks.table([row]) + ticks.verdicts([row])
+    assert lines[1].split()[:6] == ["nodes", "reached", "halts", "btplan", "BT.CPP", "py"]
+    assert lines[2].split()[0] == str(ticks.size(ticks.goal_forest(300, 1)))
+    assert lines[-1].startswith(ticks.TARGET + " (worst ratio ")
+    assert lines[-1].endswith((": met", ": missed"))

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import random
+
 import pytest
 from bt_stubs import ScriptWorld
 
@@ -14,7 +16,10 @@ from btplan.bt import (
     BehaviorTree,
     Condition,
     Fallback,
+    Node,
     Sequence,
+    Status,
+    World,
 )
 
 
@@ -118,3 +123,64 @@ def test_structure_edits_keep_parent_links() -> None:
     assert seq.index_of(c) == 1
     with pytest.raises(ValueError):
         Sequence([c])
+
+
+class _OwnCondition(Condition):
+    """A Condition subclass: composites must tick it through its own method."""
+
+    __slots__ = ()
+    ticks = 0
+
+    def tick(self, world: World) -> Status:
+        _OwnCondition.ticks += 1
+        return Condition.tick(self, world)
+
+
+class _OwnAction(Action):
+    """An Action subclass: composites must tick and halt it through its own methods."""
+
+    __slots__ = ()
+    calls = 0
+
+    def tick(self, world: World) -> Status:
+        _OwnAction.calls += 1
+        return Action.tick(self, world)
+
+    def halt(self, world: World) -> None:
+        _OwnAction.calls += 1
+        Action.halt(self, world)
+
+
+def _random_tree(rng: random.Random, depth: int, own: bool, names: list[str]) -> Node:
+    """A reactive tree of the PA-BT kind with some wider composites; `own` makes its leaves
+    subclasses, which the composites do not handle in place."""
+    cond, act = (_OwnCondition, _OwnAction) if own else (Condition, Action)
+    if depth == 0 or rng.random() < 0.25:
+        name = rng.choice(names)
+        return cond(name.lower()) if rng.random() < 0.6 else act(name)
+    kids = [_random_tree(rng, depth - 1, own, names) for _ in range(rng.randint(1, 4))]
+    return (Sequence if rng.random() < 0.5 else Fallback)(kids)
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_leaves_handled_in_place_tick_and_halt_as_their_own_methods_do(seed: int) -> None:
+    names = ["A", "B", "C", "D", "E"]
+    trees = [BehaviorTree(_random_tree(random.Random(seed), 5, own, names))
+             for own in (False, True)]
+    worlds = [ScriptWorld(scripts={n: [RUNNING, RUNNING, SUCCESS, FAILURE, RUNNING]
+                                   for n in names[:3]}) for _ in trees]
+    flips = random.Random(seed + 1000)
+    before = _OwnCondition.ticks, _OwnAction.calls
+    for _ in range(25):
+        facts = {(n.lower(), ()) for n in names if flips.random() < 0.5}
+        statuses = []
+        for tree, world in zip(trees, worlds, strict=True):
+            world.facts = set(facts)
+            statuses.append((tree.tick(world), [n.status for n in tree.nodes()]))
+        assert statuses[0] == statuses[1]
+        assert worlds[0].take_log() == worlds[1].take_log()
+    for tree, world in zip(trees, worlds, strict=True):
+        tree.halt(world)
+        assert all(n.status is IDLE for n in tree.nodes())
+    assert worlds[0].take_log() == worlds[1].take_log()
+    assert (_OwnCondition.ticks, _OwnAction.calls) > before
