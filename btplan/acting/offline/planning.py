@@ -131,6 +131,8 @@ def plan(
         if last is None or out_of_time:
             raise
         result = _whole_goal(run, opts, error, last)
+    if last is not None:
+        last.release()  # the states its turns kept are not needed to improve the plan
     return _improve(run, result, say) if improve and opts.improve_plan else result
 
 

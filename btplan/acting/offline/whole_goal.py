@@ -22,24 +22,11 @@ if TYPE_CHECKING:  # the search is loaded only when a plan run needs it
 WHOLE_STATES = 1_000_000
 """States the whole-goal search may expand; the time limit usually comes first."""
 
-WHOLE_STORED = 2_000_000
-"""States the whole-goal search may keep, expanded or waiting: a few hundred bytes
-each as packed ints (child-snack's states have a thousand successors)."""
-
 STORED_BYTES = 256 << 20
-"""About the most memory the kept states may take. A state is a packed int of one bit
-per atom: with ten thousand balls in gripper, 5 kB a state and 20,000 successors each,
-two million states would be ten gigabytes; the search gives up before (and
+"""About the most memory the search's kept states and waiting children may take. A
+state is a packed int of one bit per atom: with ten thousand balls in gripper, 5 kB a
+state and 20,000 successors each, the search gives up before it takes gigabytes (and
 backchaining goes on alone), as a planner that needs only the problem's size should."""
-
-STATE_OVERHEAD = 240
-"""Bytes a kept state costs beyond its bits: its entries in the parents and keys
-tables and in the queues."""
-
-
-def stored_bound(atoms: int) -> int:
-    """States the search may keep for a model of `atoms` atoms (STORED_BYTES)."""
-    return max(1_000, min(WHOLE_STORED, STORED_BYTES // (atoms // 8 + STATE_OVERHEAD)))
 
 EARLY_SHARE = 0.5
 """The share of the time left that the search gets in its early slice."""
@@ -73,10 +60,18 @@ class WholeGoalSearch:
             engine = self.models.subgoal_search
             self._run = engine.begin(
                 start, list(self.task.goal_literals), max_states=WHOLE_STATES,
-                max_stored=stored_bound(len(engine.packed.atoms)), portfolio=True)
+                max_bytes=STORED_BYTES, portfolio=True)
         if self._run.done:
             return self._run.plan
-        return self._run.resume(until)
+        steps = self._run.resume(until)
+        if self._run.done:
+            self._run.release()  # a plan or no plan: its states are not needed again
+        return steps
+
+    def release(self) -> None:
+        """Drop the search's states and entries; it is over (planning has its tree)."""
+        if self._run is not None:
+            self._run.release()
 
     def why(self, deadline: float | None) -> str:
         """Why no plan was found, and after how many states."""
