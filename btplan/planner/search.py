@@ -165,14 +165,17 @@ class Buckets:
     """A queue of entries (ints) by whole-number estimate, first in, first out within one.
 
     The estimates are few (h_FF and landmark counts of one search), the entries many:
-    each bucket is an array of 8-byte entries, where a heap of tuples took about 100
-    bytes an entry, and a hundred thousand of them waited in a zenotravel search.
+    each bucket is an array of 4-byte entries (8-byte ones once an entry needs them),
+    where a heap of tuples took about 100 bytes an entry, and half a million of them
+    waited in a zenotravel search.
     """
 
-    __slots__ = ("buckets", "heads", "levels", "size")
+    __slots__ = ("buckets", "code", "heads", "levels", "size")
 
     def __init__(self) -> None:
         self.buckets: dict[int, array[int]] = {}
+        self.code = "I"
+        """The arrays' type: 4-byte entries until one does not fit, 8-byte ones then."""
         self.heads: dict[int, int] = {}
         """How many entries each bucket has given out (they stay until it is compacted)."""
         self.levels: list[int] = []
@@ -185,10 +188,15 @@ class Buckets:
     def push(self, estimate: int, entry: int) -> None:
         bucket = self.buckets.get(estimate)
         if bucket is None:
-            bucket = self.buckets[estimate] = array("Q")
+            bucket = self.buckets[estimate] = array(self.code)
             self.heads[estimate] = 0
             heapq.heappush(self.levels, estimate)
-        bucket.append(entry)
+        try:
+            bucket.append(entry)
+        except OverflowError:  # an entry past 4 bytes: every bucket takes 8-byte ones
+            self.code = "Q"
+            self.buckets = {level: array("Q", held) for level, held in self.buckets.items()}
+            self.buckets[estimate].append(entry)
         self.size += 1
 
     def pop(self) -> int:
@@ -289,7 +297,8 @@ STATE_BYTES = 200
 states, the lists of parents, actions and landmarks, and the int's header."""
 
 ENTRY_BYTES = 9
-"""About what a waiting entry costs: 8 bytes in its bucket's array, and the array's slack."""
+"""About what a waiting entry costs at most: 8 bytes in its bucket's array (4 while the
+numbers fit), and the array's slack."""
 
 
 class SearchRun:

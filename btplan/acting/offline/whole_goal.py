@@ -65,13 +65,14 @@ class WholeGoalSearch:
             return self._run.plan
         steps = self._run.resume(until)
         if self._run.done:
-            self._run.release()  # a plan or no plan: its states are not needed again
+            self.release()  # a plan or no plan: its states are not needed again
         return steps
 
     def release(self) -> None:
         """Drop the search's states and entries; it is over (planning has its tree)."""
-        if self._run is not None:
+        if self._run is not None and self._run.stored:
             self._run.release()
+            give_back()
 
     def why(self, deadline: float | None) -> str:
         """Why no plan was found, and after how many states."""
@@ -156,3 +157,16 @@ def unsolvable(task: Task, models: AchieverIndex) -> str | None:
             if models.mutexes.exclusive(first, second):
                 return f"{first} and {second} can never hold together (h^2 mutexes)"
     return None
+
+
+def give_back() -> None:
+    """Hand the memory freed back to the system, where the C library can (glibc's
+    malloc_trim): the search's queues are arrays the allocator keeps for reuse, and
+    plan improvement, which comes next, takes its memory in small objects that cannot
+    reuse it. Zenotravel p03: 39 MB resident after the search's release, 34 after this."""
+    try:
+        import ctypes
+
+        ctypes.CDLL(None).malloc_trim(0)
+    except (OSError, AttributeError):  # not glibc: the memory stays for reuse
+        pass
