@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 
@@ -165,6 +166,7 @@ class _Search:
         self.turns: list[tuple[float, float]] = []
         self.proof = None
         self.too_wide = ""
+        self.task = SimpleNamespace(goal_literals=[None] * 20)  # twenty goals
 
     def resume(self, until: float) -> list[str] | None:
         self.turns.append((self.clock.now, until))
@@ -241,21 +243,18 @@ def test_a_new_attempt_that_only_holds_what_it_started_with_goes_on_stalling(
     assert turns.take(second) == ["step"] and search.turns == [(108.0, 116.0)]
 
 
-def test_the_early_slice_is_left_out_while_the_failed_attempt_was_getting_somewhere(
+def test_the_early_slice_lasts_as_long_as_the_failed_attempt_would_need_at_its_pace(
         monkeypatch: pytest.MonkeyPatch) -> None:
     from btplan.acting.offline.whole_goal import EarlySlice
 
     clock, search, turns = _turns(monkeypatch, limit=300.0, until=340.0, finds=1)
     goals = _Goals()
+    turns.take(goals)  # first looked at, holding none of the 20 goals
+    clock.now, goals.held = 102.0, 5
     turns.take(goals)
-    clock.now, goals.held = 101.0, 13
-    turns.take(goals)
-    clock.now = 101.5  # it fails 0.5 s after its last headway: the retry goes on
-    assert EarlySlice(search, 400.0, turns).take() is None  # type: ignore[arg-type]
-    assert search.turns == []
-    clock.now = 110.0  # failing 9 s after: a slice as long as that stall
+    clock.now = 102.5  # it fails: 5 goals in 2.5 s, all 20 would take 10 s
     assert EarlySlice(search, 400.0, turns).take() == ["step"]  # type: ignore[arg-type]
-    assert search.turns == [(110.0, 119.0)]
+    assert search.turns == [(102.5, 112.5)]
 
 
 def test_an_attempt_that_failed_without_headway_leaves_the_search_half_the_time_left(

@@ -9,6 +9,7 @@ strategy has failed. h^2 is asked first whether the goal can hold at all.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 
@@ -94,13 +95,13 @@ class EarlySlice:
     """The whole-goal search's early slice, taken once, when the first attempt fails.
 
     An attempt that failed without ever holding more goals at once than at its start
-    is visibly stuck: the search gets EARLY_SHARE of the time left (parking's first
-    attempt fails within a second, and the search needs a few). One that got somewhere
-    gets only what its last stall earned, as a turn would (`SearchTurns`), and nothing
-    when it was still getting somewhere as it failed: a retry without the choice that
-    failed often does better. 120 blocks: the first attempt held 13 of 69 goals, 0.5 s
-    before it failed at 2 s, and the search then took 75 s (and 95 MB for its model)
-    for a plan the retry finds in 4.
+    is visibly stuck: the search gets EARLY_SHARE of the time left (parking p04's first
+    attempt fails within 1.4 s holding none of its 24 goals, and the search needs 12 s).
+    One that got somewhere gets, within that, as long as backchaining would need for
+    every goal at the pace it showed (`SearchTurns.pace`): a retry without the choice
+    that failed may finish at that pace. 120 blocks: the first attempt held 14 of 69
+    goals 1.2 s after its first tick when it failed, and the search then took 75 s
+    (and 95 MB for its model) for a plan the retry finds in 4; now the slice is 6 s.
     """
 
     def __init__(self, last: WholeGoalSearch, deadline: float,
@@ -116,11 +117,8 @@ class EarlySlice:
         now = time.perf_counter()
         share = (self.deadline - now) * EARLY_SHARE
         turns = self.turns
-        if turns is not None and turns.made_headway():
-            stalled = turns.stalled(now)
-            if stalled < turns.patience(now):
-                return None  # getting somewhere until it failed: the retries go on
-            share = min(share, stalled)
+        if turns is not None:
+            share = min(share, max(turns.pace(now), MIN_TURN))
         steps = self.last.resume(now + share)
         if turns is not None:
             turns.resumed()
@@ -134,15 +132,15 @@ class SearchTurns:
     On a large model one attempt of backchaining can run most of its share of the time
     limit and fail (parking once took 17-24 s of 30), leaving the search, which needs
     some seconds, too little. But where backchaining makes steady progress, a turn
-    only slows it down: 120 and 200 blocks finish in a few seconds more per turn, and
-    the search's states take memory. So a turn is earned: backchaining's headway is
-    the most goals its attempt has held at once (asked after every tick, LOOK_EVERY
-    apart; a move that starts the world over keeps the best), and it has stalled when
-    it has not raised that for STALL_SHARE of the time planning has run (MIN_STALL at
-    least). Then, once FIRST_TURN_SHARE of the limit has passed, the search gets a turn
-    as long as the stall, resuming where its last turn stopped; backchaining gets the
-    time back after it, and must stall as long again for the next. 200 blocks raise
-    their best at least every 2.3 s over the 25 s they take.
+    only slows it down, and the search's states take memory. So a turn is earned:
+    backchaining's headway is the most goals an attempt has held at once (asked after
+    every tick, LOOK_EVERY apart; a move that starts the world over, or a retry, must
+    hold more than the best before to count), and it has stalled when it has not raised
+    that for STALL_SHARE of the time planning has run (MIN_STALL at least). Then, once
+    FIRST_TURN_SHARE of the limit has passed, the search gets a turn as long as the
+    stall, resuming where its last turn stopped; backchaining gets the time back after
+    it, and must stall as long again for the next. 200 blocks raise their best at
+    least every 2.3 s over the 25 s they take.
     """
 
     def __init__(self, last: WholeGoalSearch, started: float, limit: float, until: float) -> None:
@@ -151,11 +149,15 @@ class SearchTurns:
         """No turn before this (`time.perf_counter()` value)."""
         self.since = started
         """When backchaining last raised its headway or got the time back from the
-        search (a new attempt that only holds what it started with has not)."""
+        search."""
+        self.best = 0
+        """The most goals an attempt has held at once."""
         self.source: Callable[[], int] | None = None
         """The current attempt's count of goals held (a new one: a new attempt)."""
-        self.start = self.best = 0
-        """The goals the attempt held at its start, and at best since."""
+        self.looked = started
+        """When the current attempt was first looked at (after its first tick)."""
+        self.start = self.reached = 0
+        """The goals the current attempt held when first looked at, and at best since."""
         self.next_look = started
         self.turns = 0
 
@@ -168,11 +170,7 @@ class SearchTurns:
             return None
         self.next_look = now + LOOK_EVERY
         if headway is not None:
-            held = headway()
-            if headway is not self.source:  # a new attempt, judged from its own start
-                self.source, self.start, self.best = headway, held, held
-            elif held > self.best:
-                self.best, self.since = held, now
+            self._look(headway, now)
         if (now < self.first or now >= self.until or self.last.proof is not None
                 or self.last.too_wide):
             return None
@@ -184,9 +182,23 @@ class SearchTurns:
         self.resumed()
         return steps
 
-    def made_headway(self) -> bool:
-        """Whether the current attempt has held more goals at once than at its start."""
-        return self.best > self.start
+    def _look(self, headway: Callable[[], int], now: float) -> None:
+        held = headway()
+        if headway is not self.source:  # a new attempt, judged from its own start
+            self.source, self.looked, self.start, self.reached = headway, now, held, held
+            if not self.best:
+                self.best = held
+        self.reached = max(self.reached, held)
+        if held > self.best:
+            self.best, self.since = held, now
+
+    def pace(self, now: float) -> float:
+        """Seconds the current attempt would need for every goal at the pace it has
+        raised the goals it holds; infinite when it has raised none."""
+        gained = self.reached - self.start
+        if gained <= 0:
+            return math.inf
+        return (now - self.looked) * len(self.last.task.goal_literals) / gained
 
     def stalled(self, now: float) -> float:
         """Seconds backchaining has run since it last raised its headway (or got the
