@@ -4,19 +4,25 @@ Each subfolder of the corpus is a domain: `domain.pddl` beside its instance file
 one domain file per instance (`p01-domain.pddl`, `domain_p01.pddl`, `p01.domain.pddl`).
 Every planner runs as its own process on the untouched files, with a per-problem time
 limit, and is measured from process start to exit: start-up and imports count, as
-they do for a user. Peak RSS comes from the kernel (wait4). A plan counts only when
+they do for a user. Peak RSS comes from the kernel: GNU time's report of the
+planner's processes (`measure` says why not this process's wait4). A plan counts only when
 bench/validate_plan.py, which shares no code with btplan, accepts it.
 
     python bench/planning.py --corpus DIR [--per-domain 3] [--timeout 30]
                              [--planners btplan,pyperplan,fd] [--only barman,tpp]
+                             [--fd-python PYTHON]
 (`btplan-nosearch` is btplan without its last-resort search, `btplan plan --no-search`.)
 
 Peers: pyperplan (GBFS with h_FF, the `bench` extra) and Fast Downward's lama-first
-(the `fd` extra, `up-fast-downward`), skipped when not installed.
+(the `fd` extra, `up-fast-downward`), skipped when not installed. `--fd-python` runs
+Fast Downward from another interpreter that has it (its own virtual environment).
+After the table, each domain's largest peak RSS of btplan beside the peers', and whether
+btplan's is at most Fast Downward's on every domain.
 """
 
 from __future__ import annotations
 
+import functools
 import importlib.util
 import os
 import signal
@@ -80,11 +86,40 @@ def instances(folder: Path) -> list[tuple[Path, Path]]:
     return sorted(pairs, key=lambda p: (p[1].stat().st_size, p[1].name))
 
 
+FD_PYTHON: str | None = None
+"""The interpreter that runs Fast Downward (--fd-python); None: this one."""
+
+FIND_FD = """
+import importlib.util
+spec = importlib.util.find_spec("up_fast_downward")
+if spec is not None and spec.submodule_search_locations:
+    print(list(spec.submodule_search_locations)[0])
+"""
+
+
+def fd_python() -> str:
+    return FD_PYTHON or sys.executable
+
+
 def fd_driver() -> str | None:
-    spec = importlib.util.find_spec("up_fast_downward")
-    if spec is None or not spec.submodule_search_locations:
+    return _driver_of(FD_PYTHON)
+
+
+@functools.cache
+def _driver_of(python: str | None) -> str | None:
+    """Fast Downward's driver script, as `python` (None: this interpreter) finds it."""
+    if python is None:
+        spec = importlib.util.find_spec("up_fast_downward")
+        found = list(spec.submodule_search_locations or []) if spec is not None else []
+        folder = found[0] if found else ""
+    else:
+        import subprocess
+
+        done = subprocess.run([python, "-c", FIND_FD], capture_output=True, text=True)
+        folder = done.stdout.strip()
+    if not folder:
         return None
-    driver = Path(list(spec.submodule_search_locations)[0]) / "downward" / "fast-downward.py"
+    driver = Path(folder) / "downward" / "fast-downward.py"
     return str(driver) if driver.exists() else None
 
 
@@ -97,13 +132,25 @@ def command(planner: str, domain: Path, problem: Path, plan: str, limit: float) 
         return [sys.executable, "-c", PYPERPLAN, str(domain), str(problem), plan]
     driver = fd_driver()
     assert driver is not None
-    return [sys.executable, driver, "--alias", "lama-first", "--plan-file", plan,
+    return [fd_python(), driver, "--alias", "lama-first", "--plan-file", plan,
             str(domain), str(problem)]
 
 
 def measure(argv: list[str], limit: float, cwd: str) -> tuple[int | None, float, float, str]:
-    """(exit code or None on timeout, wall seconds, peak RSS in MB, last stderr line)."""
+    """(exit code or None on timeout, wall seconds, peak RSS in MB, last stderr line).
+
+    The peak is the largest of the planner's processes (wait4's ru_maxrss covers the
+    children a process waited for). It is not read from this process's wait4: a process
+    spawned from here starts with this one's high-water mark (Linux counts the memory
+    it had before exec), so every planner would read at least the bench's own 20 MB.
+    GNU time, which is small, spawns the planner instead and reports its peak; a run
+    killed at the limit is read from /proc (VmHWM of its processes) just before the kill.
+    """
     err_path = os.path.join(cwd, "stderr.txt")
+    rss_path = os.path.join(cwd, "rss.txt")
+    timer = gnu_time()
+    if timer is not None:
+        argv = [timer, "-f", "%M", "-o", rss_path, *argv]
     start = time.perf_counter()
     with open(err_path, "wb") as err:
         pid = os.posix_spawn(argv[0], argv, dict(os.environ), file_actions=[
@@ -111,6 +158,7 @@ def measure(argv: list[str], limit: float, cwd: str) -> tuple[int | None, float,
             (os.POSIX_SPAWN_OPEN, 1, os.devnull, os.O_WRONLY, 0),
             (os.POSIX_SPAWN_DUP2, err.fileno(), 2)], setsid=True)
     code: int | None = None
+    peak = 0.0
     while True:
         done, status, usage = os.wait4(pid, os.WNOHANG)
         if done:
@@ -118,6 +166,7 @@ def measure(argv: list[str], limit: float, cwd: str) -> tuple[int | None, float,
             code = os.waitstatus_to_exitcode(status)
             break
         if time.perf_counter() - start > limit:
+            peak = group_peak_mb(pid)
             os.killpg(pid, signal.SIGKILL)
             _, status, usage = os.wait4(pid, 0)
             seconds = time.perf_counter() - start
@@ -125,7 +174,46 @@ def measure(argv: list[str], limit: float, cwd: str) -> tuple[int | None, float,
         time.sleep(0.002)
     lines = Path(err_path).read_text(errors="replace").strip().splitlines()
     said = [x for x in lines if x.startswith(("error:", "failed:", "Error", "ValueError"))]
-    return code, seconds, usage.ru_maxrss / 1024, (said or lines or [""])[-1]
+    if timer is None:
+        peak = usage.ru_maxrss / 1024  # at least this process's own peak (see above)
+    elif code is not None:
+        told = Path(rss_path).read_text().split() if os.path.exists(rss_path) else []
+        peak = int(told[-1]) / 1024 if told and told[-1].isdigit() else peak
+    return code, seconds, peak, (said or lines or [""])[-1]
+
+
+@functools.cache
+def gnu_time() -> str | None:
+    """GNU time's path, when installed (`-f %M -o FILE`: the peak RSS of a command)."""
+    import shutil
+    import subprocess
+
+    path = shutil.which("time") or ("/usr/bin/time" if os.path.exists("/usr/bin/time") else None)
+    if path is None:
+        return None
+    try:
+        said = subprocess.run([path, "--version"], capture_output=True, text=True, timeout=5)
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+    return path if "GNU" in said.stdout + said.stderr else None
+
+
+def group_peak_mb(group: int) -> float:
+    """The largest VmHWM (peak RSS) of the processes of a process group, in MB."""
+    peak = 0
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            stat = Path(f"/proc/{entry}/stat").read_text()
+            if int(stat.rsplit(")", 1)[1].split()[2]) != group:
+                continue
+            for line in Path(f"/proc/{entry}/status").read_text().splitlines():
+                if line.startswith("VmHWM:"):
+                    peak = max(peak, int(line.split()[1]))
+        except (OSError, ValueError, IndexError):
+            continue
+    return peak / 1024
 
 
 def run_one(planner: str, domain: Path, problem: Path, limit: float) -> Run:
@@ -227,4 +315,30 @@ def report(cases: list[Case], planners: list[str], limit: float) -> list[str]:
         solved = [r.seconds for r in runs if r.solved]
         lines.append(f"{planner}: median time of solved {_median(solved):.2f} s, "
                      f"peak RSS max {max((r.rss_mb for r in runs), default=0):.0f} MB")
+    return lines + memory(cases, planners)
+
+
+def memory(cases: list[Case], planners: list[str]) -> list[str]:
+    """Each domain's largest peak RSS per planner, and the target's verdict.
+
+    The target: btplan's peak grows with what the problem needs, so on no domain does
+    it exceed Fast Downward's, whose search is in C++ behind a Python translator.
+    """
+    lines = ["", "peak RSS per domain, MB (largest of its problems, whole processes; "
+             "*: on a problem it did not solve):",
+             f"{'domain':<12} " + " ".join(f"{p:>10}" for p in planners)]
+    domains = sorted({c.domain for c in cases})
+    worse: list[str] = []
+    for name in domains:
+        mine = [c for c in cases if c.domain == name]
+        peaks = {p: max(c.runs[p].rss_mb for c in mine) for p in planners}
+        failed = {p for p in planners for c in mine
+                  if c.runs[p].rss_mb == peaks[p] and not c.runs[p].solved}
+        lines.append(f"{name:<12} " + " ".join(
+            f"{peaks[p]:>9.0f}{'*' if p in failed else ' '}" for p in planners))
+        if "btplan" in peaks and "fd" in peaks and peaks["btplan"] > peaks["fd"]:
+            worse.append(f"{name} {peaks['btplan']:.0f} > {peaks['fd']:.0f}")
+    if "btplan" in planners and "fd" in planners:
+        verdict = "met" if not worse else "missed (" + ", ".join(worse) + ")"
+        lines.append(f"target: peak RSS at most Fast Downward's on every domain: {verdict}")
     return lines

@@ -282,6 +282,9 @@ def main() -> None:
                         help="with --corpus or --scale: planners to run (fd needs the 'fd' "
                              "extra)")
     parser.add_argument("--only", help="with --corpus: comma-separated domain folders")
+    parser.add_argument("--fd-python", metavar="PYTHON",
+                        help="with --corpus or --scale: run Fast Downward with this "
+                             "interpreter (one whose environment has up-fast-downward)")
     parser.add_argument("--scale", metavar="DOMAINS",
                         help="comma-separated generated domains, grown until a planner fails, "
                              "each planner a whole process (--planners, --sizes, --plot)")
@@ -289,6 +292,10 @@ def main() -> None:
     parser.add_argument("--replot", metavar="FILES",
                         help="comma-separated JSON files of --save: report and --plot them")
     args = parser.parse_args()
+    if args.fd_python:
+        import corpus
+
+        corpus.FD_PYTHON = args.fd_python
     if args.scale or args.replot:
         import scaling
 

@@ -9,11 +9,13 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 
 from btplan.acting.offline import load, plan
 from btplan.acting.offline import planning as offline
+from btplan.acting.offline.whole_goal import SearchTurns
 from btplan.errors import NoAchieverError
 from btplan.model import GroundLiteral, Task
 from btplan.planner import AchieverIndex, PlannerOptions
@@ -164,6 +166,7 @@ class _Search:
         self.turns: list[tuple[float, float]] = []
         self.proof = None
         self.too_wide = ""
+        self.task = SimpleNamespace(goal_literals=[None] * 20)  # twenty goals
 
     def resume(self, until: float) -> list[str] | None:
         self.turns.append((self.clock.now, until))
@@ -172,7 +175,7 @@ class _Search:
 
 
 def _turns(monkeypatch: pytest.MonkeyPatch, limit: float, until: float,
-           finds: int) -> tuple[_Clock, _Search, Callable[[], object]]:
+           finds: int) -> tuple[_Clock, _Search, SearchTurns]:
     """SearchTurns begun at 100 s on a fake clock, with a search that finds on turn `finds`."""
     from btplan.acting.offline import whole_goal
 
@@ -180,40 +183,99 @@ def _turns(monkeypatch: pytest.MonkeyPatch, limit: float, until: float,
     monkeypatch.setattr(whole_goal.time, "perf_counter", clock)
     search = _Search(clock, finds)
     turns = whole_goal.SearchTurns(search, 100.0, limit, until)  # type: ignore[arg-type]
-    return clock, search, turns.take
+    return clock, search, turns
 
 
-def test_search_turns_come_after_the_first_wait_and_share_the_time_evenly(
+class _Goals:
+    """An attempt's count of the goals it holds now, as the test sets it."""
+
+    def __init__(self) -> None:
+        self.held = 0
+
+    def __call__(self) -> int:
+        return self.held
+
+
+def test_no_turn_while_backchaining_keeps_reaching_more_goals(
         monkeypatch: pytest.MonkeyPatch) -> None:
-    clock, search, take = _turns(monkeypatch, limit=30.0, until=200.0, finds=3)
-    clock.now = 107.0
-    assert take() is None and search.turns == []  # a quarter of 30 s: backchaining's
-    clock.now = 107.5
-    assert take() is None and search.turns == [(107.5, 115.0)]  # as long as it waited
-    clock.now = 122.0  # backchaining's 7 s of its 7.5 s back: not yet
-    assert take() is None and len(search.turns) == 1
-    clock.now = 123.0
-    assert take() is None and search.turns[1] == (123.0, 131.0)
-    clock.now = 140.0
-    assert take() == ["step"] and search.turns[2] == (140.0, 149.0)
+    clock, search, turns = _turns(monkeypatch, limit=30.0, until=200.0, finds=1)
+    goals = _Goals()
+    for second in range(40):  # a goal more every second, far past the first wait (7.5 s)
+        clock.now, goals.held = 100.0 + second, second
+        assert turns.take(goals) is None
+    assert search.turns == []
+
+
+def test_a_stall_after_the_first_wait_earns_a_turn_as_long_as_the_stall(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    clock, search, turns = _turns(monkeypatch, limit=30.0, until=200.0, finds=3)
+    goals = _Goals()
+    assert turns.take(goals) is None  # the attempt starts, holding no goal
+    clock.now, goals.held = 101.0, 2
+    assert turns.take(goals) is None  # headway at 101 s
+    clock.now = 107.25
+    assert turns.take(goals) is None  # stalled 6.25 s, but within a quarter of 30 s
+    clock.now = 107.5  # 6.5 s without headway, over a quarter of the 7.5 s run
+    assert turns.take(goals) is None and search.turns == [(107.5, 114.0)]
+    clock.now = 118.5  # 4.5 s back, within a quarter of 18.5 s: backchaining's
+    assert turns.take(goals) is None and len(search.turns) == 1
+    clock.now = 119.0  # 5 s: stalled again
+    assert turns.take(goals) is None and search.turns[1] == (119.0, 124.0)
+    goals.held = 3  # headway: the stall starts over
+    assert turns.take(goals) is None
+    clock.now = 131.0  # 7 s, within a quarter of 31 s
+    assert turns.take(goals) is None and len(search.turns) == 2
+    clock.now = 132.0
+    assert turns.take(goals) == ["step"] and search.turns[2] == (132.0, 140.0)
     clock.now = 200.0  # backchaining's share is over: the search has the rest anyway
-    assert take() is None and len(search.turns) == 3
+    assert turns.take(goals) is None and len(search.turns) == 3
 
 
-def test_a_longer_time_limit_leaves_backchaining_longer_alone(
+def test_a_new_attempt_that_only_holds_what_it_started_with_goes_on_stalling(
         monkeypatch: pytest.MonkeyPatch) -> None:
-    clock, search, take = _turns(monkeypatch, limit=300.0, until=340.0, finds=1)
-    clock.now = 174.0
-    assert take() is None and search.turns == []
-    clock.now = 175.0
-    assert take() == ["step"] and search.turns == [(175.0, 250.0)]
+    clock, search, turns = _turns(monkeypatch, limit=30.0, until=200.0, finds=1)
+    first, second = _Goals(), _Goals()
+    first.held = second.held = 4  # e.g. goals that hold from the start
+    assert turns.take(first) is None
+    clock.now = 104.0
+    assert turns.take(second) is None  # a retry, no further
+    clock.now = 108.0
+    assert turns.take(second) == ["step"] and search.turns == [(108.0, 116.0)]
+
+
+def test_the_early_slice_lasts_as_long_as_the_failed_attempt_would_need_at_its_pace(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from btplan.acting.offline.whole_goal import EarlySlice
+
+    clock, search, turns = _turns(monkeypatch, limit=300.0, until=340.0, finds=1)
+    goals = _Goals()
+    turns.take(goals)  # first looked at, holding none of the 20 goals
+    clock.now, goals.held = 102.0, 5
+    turns.take(goals)
+    clock.now = 102.5  # it fails: 5 goals in 2.5 s, all 20 would take 10 s
+    assert EarlySlice(search, 400.0, turns).take() == ["step"]  # type: ignore[arg-type]
+    assert search.turns == [(102.5, 112.5)]
+
+
+def test_an_attempt_that_failed_without_headway_leaves_the_search_half_the_time_left(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from btplan.acting.offline.whole_goal import EarlySlice
+
+    clock, search, turns = _turns(monkeypatch, limit=300.0, until=340.0, finds=1)
+    goals = _Goals()
+    turns.take(goals)
+    clock.now = 101.0
+    assert EarlySlice(search, 401.0, turns).take() == ["step"]  # type: ignore[arg-type]
+    assert search.turns == [(101.0, 251.0)]
 
 
 def test_a_plan_found_in_a_search_turn_stops_backchaining_and_is_the_tree(
         monkeypatch: pytest.MonkeyPatch) -> None:
     from btplan.acting.offline import whole_goal
 
-    monkeypatch.setattr(whole_goal, "FIRST_TURN_SHARE", 0.0)  # a turn after the first tick
+    monkeypatch.setattr(whole_goal, "FIRST_TURN_SHARE", 0.0)  # a turn after the first tick,
+    monkeypatch.setattr(whole_goal, "MIN_STALL", 0.0)  # as if backchaining had stalled
+    monkeypatch.setattr(whole_goal, "STALL_SHARE", 0.0)
     monkeypatch.setattr(whole_goal, "MIN_TURN", 600.0)  # long enough to find the plan
     task = load(str(DOMAINS / "planner_sussman.bt"))
     result = plan(task, timeout=3600, improve=False)

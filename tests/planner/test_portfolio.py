@@ -40,7 +40,7 @@ def preferred_children(task: Task, landmark_preferred: bool) -> set[str]:
     engine.landmark_preferred = landmark_preferred
     run = engine.begin(task.initial_state, task.goal_literals)
     assert run.resume(states=1) is None and run.expanded == 1
-    return {engine.actions[entry[4]].name for entry in run.queues[1]}
+    return {engine.actions[entry % run.width - 1].name for entry in run.queues[1].entries()}
 
 
 def test_actions_reaching_a_landmark_are_preferred_beside_the_relaxed_plan(
@@ -55,7 +55,7 @@ def test_the_future_landmarks_are_those_the_count_counts(tmp_path: Path) -> None
     engine = AchieverIndex(task).subgoal_search
     run = engine.begin(task.initial_state, task.goal_literals)
     start = run.engine.packed.encode(task.initial_state)
-    passed = run.progress(run.reached[-1], start)
+    passed = run.progress(run.before_start, start)
     future = run.future(start, passed)
     assert future and future == run.marks  # nothing reached yet
     assert bin(future).count("1") == run.count(start, passed)

@@ -148,7 +148,7 @@ def test_a_landmark_reached_then_lost_counts_again_while_a_later_one_needs_it(
         tmp_path: Path) -> None:
     task, packed, run = sussman_with_orders()
     start = packed.encode(task.initial_state)
-    passed = run.progress(run.reached[-1], start)
+    passed = run.progress(run.before_start, start)
     base = run.count(start, passed)
     clear = 1 << packed.ids[atom("clear(a)")]
     # A state where the path made clear(a) true once, and then lost it (as when c is
@@ -171,7 +171,7 @@ def test_a_goal_reached_before_a_landmark_that_undoes_it_is_not_counted_yet(
     assert before >> b_on_c & 1
     start = packed.encode(task.initial_state)
     state = start | 1 << a_on_b
-    passed = run.reached[-1] | (before & ~(1 << b_on_c))  # all but on(b, c) passed
+    passed = run.before_start | (before & ~(1 << b_on_c))  # all but on(b, c) passed
     assert not run.progress(passed, state) >> a_on_b & 1
     assert run.progress(passed | 1 << b_on_c, state) >> a_on_b & 1
     assert run.progress(passed, state | 1 << b_on_c) >> a_on_b & 1

@@ -35,7 +35,7 @@ def test_a_search_too_wide_for_its_budget_is_left_out_before_it_is_built(
     assert last.resume(None) is None and "too wide to search whole" in last.why(None)
     assert not models.has_packed  # nothing was built
     turns = SearchTurns(last, started=0.0, limit=1.0, until=1e18)
-    turns.next_turn = 0.0
+    turns.first = 0.0
     assert turns.take() is None and turns.turns == 0
 
 

@@ -85,9 +85,10 @@ class Run:
     stop: Callable[[], bool] | None
     limit: str = ""
     """How a failure names the time limit that ran out, when it is not `timeout` itself."""
-    search_turn: Callable[[], list[GroundAction] | None] | None = None
-    """Asked after every tick: gives the whole-goal search its turn when one is due, and
-    returns the plan it found then (whole_goal.SearchTurns)."""
+    search_turn: Callable[[Callable[[], int]], list[GroundAction] | None] | None = None
+    """Asked after every tick with a count of the goals the attempt holds now: gives the
+    whole-goal search its turn when one is due, and returns the plan it found then
+    (whole_goal.SearchTurns)."""
 
 
 class SearchFound(Exception):
@@ -133,6 +134,12 @@ def _rounds(
     world = loop.skills.world
     assert isinstance(world, SymbolicWorld)
     ticks_left = run.max_ticks
+    goals = task.goal_literals
+
+    def headway() -> int:
+        """The goals the attempt's world holds now (the search's turns judge by it)."""
+        state = loop.world.facts()
+        return sum(1 for goal in goals if goal.holds(state))
 
     def watch(report: TickReport) -> None:
         if stop is not None and stop():
@@ -148,7 +155,7 @@ def _rounds(
             for expansion in report.expansions:
                 on_expansion(loop.tree, expansion)
         if run.search_turn is not None:
-            steps = run.search_turn()
+            steps = run.search_turn(headway)
             if steps is not None:
                 raise SearchFound(steps)
         if any(e.moves for e in report.expansions):

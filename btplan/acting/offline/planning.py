@@ -113,15 +113,17 @@ def plan(
         soft = started + timeout * BACKCHAIN_SHARE
     run = Run(task, seed, max_ticks, deadline, timeout, on_expansion, started, models, stop)
     last = WholeGoalSearch(task, models, seed) if whole else None
-    early = None if last is None or deadline is None else EarlySlice(last, deadline)
+    turns = (SearchTurns(last, started, timeout, soft)
+             if last is not None and soft is not None and timeout else None)
+    early = None if last is None or deadline is None else EarlySlice(last, deadline, turns)
     try:
         share = run
         if soft is not None and soft != deadline and timeout is not None:
             share = replace(run, deadline=soft, timeout=soft - started, limit=(
                 f"backchaining's share ({timeout * BACKCHAIN_SHARE:g} s) of the {timeout:g} s "
                 "time limit"))
-        if last is not None and soft is not None and timeout:
-            share = replace(share, search_turn=SearchTurns(last, started, timeout, soft).take)
+        if turns is not None:
+            share = replace(share, search_turn=turns.take)
         result = _strategies(share, strategies, None if early is None else (
             lambda: _early(run, opts, early)))
     except SearchFound as found:
@@ -131,6 +133,8 @@ def plan(
         if last is None or out_of_time:
             raise
         result = _whole_goal(run, opts, error, last)
+    if last is not None:
+        last.release()  # the states its turns kept are not needed to improve the plan
     return _improve(run, result, say) if improve and opts.improve_plan else result
 
 

@@ -9,7 +9,9 @@ strategy has failed. h^2 is asked first whether the goal can hold at all.
 
 from __future__ import annotations
 
+import math
 import time
+from collections.abc import Callable
 
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex
@@ -22,24 +24,11 @@ if TYPE_CHECKING:  # the search is loaded only when a plan run needs it
 WHOLE_STATES = 1_000_000
 """States the whole-goal search may expand; the time limit usually comes first."""
 
-WHOLE_STORED = 2_000_000
-"""States the whole-goal search may keep, expanded or waiting: a few hundred bytes
-each as packed ints (child-snack's states have a thousand successors)."""
-
 STORED_BYTES = 256 << 20
-"""About the most memory the kept states may take. A state is a packed int of one bit
-per atom: with ten thousand balls in gripper, 5 kB a state and 20,000 successors each,
-two million states would be ten gigabytes; the search gives up before (and
+"""About the most memory the search's kept states and waiting children may take. A
+state is a packed int of one bit per atom: with ten thousand balls in gripper, 5 kB a
+state and 20,000 successors each, the search gives up before it takes gigabytes (and
 backchaining goes on alone), as a planner that needs only the problem's size should."""
-
-STATE_OVERHEAD = 240
-"""Bytes a kept state costs beyond its bits: its entries in the parents and keys
-tables and in the queues."""
-
-
-def stored_bound(atoms: int) -> int:
-    """States the search may keep for a model of `atoms` atoms (STORED_BYTES)."""
-    return max(1_000, min(WHOLE_STORED, STORED_BYTES // (atoms // 8 + STATE_OVERHEAD)))
 
 EARLY_SHARE = 0.5
 """The share of the time left that the search gets in its early slice."""
@@ -73,10 +62,19 @@ class WholeGoalSearch:
             engine = self.models.subgoal_search
             self._run = engine.begin(
                 start, list(self.task.goal_literals), max_states=WHOLE_STATES,
-                max_stored=stored_bound(len(engine.packed.atoms)), portfolio=True)
+                max_bytes=STORED_BYTES, portfolio=True)
         if self._run.done:
             return self._run.plan
-        return self._run.resume(until)
+        steps = self._run.resume(until)
+        if self._run.done:
+            self.release()  # a plan or no plan: its states are not needed again
+        return steps
+
+    def release(self) -> None:
+        """Drop the search's states and entries; it is over (planning has its tree)."""
+        if self._run is not None and self._run.stored:
+            self._run.release()
+            give_back()
 
     def why(self, deadline: float | None) -> str:
         """Why no plan was found, and after how many states."""
@@ -94,60 +92,144 @@ class WholeGoalSearch:
 
 
 class EarlySlice:
-    """The whole-goal search's early slice, taken once, when the first attempt fails."""
+    """The whole-goal search's early slice, taken once, when the first attempt fails.
 
-    def __init__(self, last: WholeGoalSearch, deadline: float) -> None:
-        self.last, self.deadline = last, deadline
+    An attempt that failed without ever holding more goals at once than at its start
+    is visibly stuck: the search gets EARLY_SHARE of the time left (parking p04's first
+    attempt fails within 1.4 s holding none of its 24 goals, and the search needs 12 s).
+    One that got somewhere gets, within that, as long as backchaining would need for
+    every goal at the pace it showed (`SearchTurns.pace`): a retry without the choice
+    that failed may finish at that pace. 120 blocks: the first attempt held 14 of 69
+    goals 1.2 s after its first tick when it failed, and the search then took 75 s
+    (and 95 MB for its model) for a plan the retry finds in 4; now the slice is 6 s.
+    """
+
+    def __init__(self, last: WholeGoalSearch, deadline: float,
+                 turns: SearchTurns | None = None) -> None:
+        self.last, self.deadline, self.turns = last, deadline, turns
         self.taken = False
 
     def take(self) -> list[GroundAction] | None:
-        """Search for EARLY_SHARE of the time left (once); the plan, if one is found."""
+        """Search for the slice (once); the plan, if one is found."""
         if self.taken:
             return None
         self.taken = True
         now = time.perf_counter()
-        return self.last.resume(now + (self.deadline - now) * EARLY_SHARE)
+        share = (self.deadline - now) * EARLY_SHARE
+        turns = self.turns
+        if turns is not None:
+            share = min(share, max(turns.pace(now), MIN_TURN))
+        steps = self.last.resume(now + share)
+        if turns is not None:
+            turns.resumed()
+        return steps
 
 
 class SearchTurns:
-    """Turns of the whole-goal search while backchaining's attempts still run.
+    """Turns of the whole-goal search while backchaining's attempts still run, each
+    earned by a stall of backchaining.
 
-    On a large model one attempt of backchaining can use most of its share of the time
-    limit before it fails (parking: 17-24 s of 30), and the search, which needs some
-    ten seconds there, is left too little. So once backchaining has run
-    FIRST_TURN_SHARE of the time limit, the search gets a turn as long as backchaining
-    has had since the last turn, and so on: past that first wait, each gets about half
-    of the time until `until` (backchaining's share). The search resumes where its last
-    turn stopped, so no turn is lost. The first wait grows with the limit: where
-    backchaining makes steady progress (200 blocks: 486 expansions in about a minute), an early
-    turn halves its speed and lets the search's stored states grow to a gigabyte.
+    On a large model one attempt of backchaining can run most of its share of the time
+    limit and fail (parking once took 17-24 s of 30), leaving the search, which needs
+    some seconds, too little. But where backchaining makes steady progress, a turn
+    only slows it down, and the search's states take memory. So a turn is earned:
+    backchaining's headway is the most goals an attempt has held at once (asked after
+    every tick, LOOK_EVERY apart; a move that starts the world over, or a retry, must
+    hold more than the best before to count), and it has stalled when it has not raised
+    that for STALL_SHARE of the time planning has run (MIN_STALL at least). Then, once
+    FIRST_TURN_SHARE of the limit has passed, the search gets a turn as long as the
+    stall, resuming where its last turn stopped; backchaining gets the time back after
+    it, and must stall as long again for the next. 200 blocks raise their best at
+    least every 2.3 s over the 25 s they take.
     """
 
     def __init__(self, last: WholeGoalSearch, started: float, limit: float, until: float) -> None:
-        self.last, self.until = last, until
+        self.last, self.started, self.until = last, started, until
+        self.first = started + FIRST_TURN_SHARE * limit
+        """No turn before this (`time.perf_counter()` value)."""
         self.since = started
-        """When backchaining last got the time back."""
-        self.next_turn = started + FIRST_TURN_SHARE * limit
+        """When backchaining last raised its headway or got the time back from the
+        search."""
+        self.best = 0
+        """The most goals an attempt has held at once."""
+        self.source: Callable[[], int] | None = None
+        """The current attempt's count of goals held (a new one: a new attempt)."""
+        self.looked = started
+        """When the current attempt was first looked at (after its first tick)."""
+        self.start = self.reached = 0
+        """The goals the current attempt held when first looked at, and at best since."""
+        self.next_look = started
         self.turns = 0
 
-    def take(self) -> list[GroundAction] | None:
-        """The plan, when a turn is due now and the search finds one in it."""
+    def take(self, headway: Callable[[], int] | None = None) -> list[GroundAction] | None:
+        """The plan, when a turn is due now and the search finds one in it. `headway`
+        counts the goals the current attempt holds now (the same callable throughout
+        an attempt)."""
         now = time.perf_counter()
-        if (now < self.next_turn or now >= self.until or self.last.proof is not None
+        if now < self.next_look:
+            return None
+        self.next_look = now + LOOK_EVERY
+        if headway is not None:
+            self._look(headway, now)
+        if (now < self.first or now >= self.until or self.last.proof is not None
                 or self.last.too_wide):
             return None
+        stalled = self.stalled(now)
+        if stalled < self.patience(now):
+            return None  # backchaining is getting somewhere: it keeps the time
         self.turns += 1
-        steps = self.last.resume(min(now + max(now - self.since, MIN_TURN), self.until))
-        self.since = time.perf_counter()
-        self.next_turn = self.since + (self.since - now)  # as long again for backchaining
+        steps = self.last.resume(min(now + max(stalled, MIN_TURN), self.until))
+        self.resumed()
         return steps
+
+    def _look(self, headway: Callable[[], int], now: float) -> None:
+        held = headway()
+        if headway is not self.source:  # a new attempt, judged from its own start
+            self.source, self.looked, self.start, self.reached = headway, now, held, held
+            if not self.best:
+                self.best = held
+        self.reached = max(self.reached, held)
+        if held > self.best:
+            self.best, self.since = held, now
+
+    def pace(self, now: float) -> float:
+        """Seconds the current attempt would need for every goal at the pace it has
+        raised the goals it holds; infinite when it has raised none."""
+        gained = self.reached - self.start
+        if gained <= 0:
+            return math.inf
+        return (now - self.looked) * len(self.last.task.goal_literals) / gained
+
+    def stalled(self, now: float) -> float:
+        """Seconds backchaining has run since it last raised its headway (or got the
+        time back from the search)."""
+        return now - self.since
+
+    def patience(self, now: float) -> float:
+        """How long backchaining may go without raising its headway before it has
+        stalled: STALL_SHARE of the time planning has run, MIN_STALL at least."""
+        return max(MIN_STALL, STALL_SHARE * (now - self.started))
+
+    def resumed(self) -> None:
+        """Backchaining has the time again: its stall is counted from now."""
+        self.since = time.perf_counter()
 
 
 FIRST_TURN_SHARE = 0.25
 """The share of the time limit backchaining has before the search's first turn."""
 
+STALL_SHARE = 0.25
+"""Backchaining has stalled when its headway has not risen for this share of the time
+planning has run..."""
+
+MIN_STALL = 2.0
+"""...and for at least this many seconds."""
+
 MIN_TURN = 0.5
 """The shortest turn: the search's first states set up its heuristics."""
+
+LOOK_EVERY = 0.05
+"""Seconds between two looks at backchaining's headway (a count over the goals)."""
 
 
 def unsolvable(task: Task, models: AchieverIndex) -> str | None:
@@ -161,3 +243,16 @@ def unsolvable(task: Task, models: AchieverIndex) -> str | None:
             if models.mutexes.exclusive(first, second):
                 return f"{first} and {second} can never hold together (h^2 mutexes)"
     return None
+
+
+def give_back() -> None:
+    """Hand the memory freed back to the system, where the C library can (glibc's
+    malloc_trim): the search's queues are arrays the allocator keeps for reuse, and
+    plan improvement, which comes next, takes its memory in small objects that cannot
+    reuse it. Zenotravel p03: 39 MB resident after the search's release, 34 after this."""
+    try:
+        import ctypes
+
+        ctypes.CDLL(None).malloc_trim(0)
+    except (OSError, AttributeError):  # not glibc: the memory stays for reuse
+        pass
