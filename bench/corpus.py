@@ -315,7 +315,47 @@ def report(cases: list[Case], planners: list[str], limit: float) -> list[str]:
         solved = [r.seconds for r in runs if r.solved]
         lines.append(f"{planner}: median time of solved {_median(solved):.2f} s, "
                      f"peak RSS max {max((r.rss_mb for r in runs), default=0):.0f} MB")
-    return lines + memory(cases, planners)
+    return lines + coverage_target(cases, planners) + time_target(cases, planners) + memory(
+        cases, planners)
+
+
+COVERAGE_SHARE = 0.95
+"""btplan's coverage on every domain, as a share of Fast Downward's at least."""
+
+
+def coverage_target(cases: list[Case], planners: list[str]) -> list[str]:
+    """The target: at least 95% of Fast Downward's coverage on every domain."""
+    if "btplan" not in planners or "fd" not in planners:
+        return []
+    short = []
+    for name in sorted({c.domain for c in cases}):
+        mine = [c for c in cases if c.domain == name]
+        ours, theirs = (sum(c.runs[p].solved for c in mine) for p in ("btplan", "fd"))
+        if ours < COVERAGE_SHARE * theirs:
+            short.append(f"{name} {ours}/{theirs}")
+    verdict = "met" if not short else "missed (" + ", ".join(short) + ")"
+    return [f"target: at least {COVERAGE_SHARE:.0%} of Fast Downward's coverage on every "
+            f"domain: {verdict}"]
+
+
+def time_target(cases: list[Case], planners: list[str]) -> list[str]:
+    """The target: median whole-process time at most pyperplan's on small and on large
+    problems alike. Small: the first half of each domain's problems, smallest first."""
+    if "btplan" not in planners or "pyperplan" not in planners:
+        return []
+    order = {id(c): [d for d in cases if d.domain == c.domain].index(c) for c in cases}
+    size = {name: sum(c.domain == name for c in cases) for name in {c.domain for c in cases}}
+    verdicts = []
+    for label, small in (("small", True), ("large", False)):
+        part = [c for c in cases if (order[id(c)] < size[c.domain] / 2) == small
+                and c.runs["btplan"].solved and c.runs["pyperplan"].solved]
+        ratio = _median([c.runs["btplan"].seconds / c.runs["pyperplan"].seconds for c in part])
+        ok = bool(part) and ratio <= 1.0
+        verdicts.append((ok, f"{label} {ratio:.2f} on {len(part)}"))
+    verdict = "met" if all(ok for ok, _ in verdicts) else "missed"
+    return [f"target: median whole-process time at most pyperplan's on small and large "
+            f"problems (btplan / pyperplan: {', '.join(text for _, text in verdicts)}): "
+            f"{verdict}"]
 
 
 def memory(cases: list[Case], planners: list[str]) -> list[str]:
