@@ -186,6 +186,8 @@ class Buckets:
         return self.size
 
     def push(self, estimate: int, entry: int) -> None:
+        """File `entry` under `estimate`; the first entry past 4 bytes turns every bucket
+        into 8-byte entries, so the common small search keeps half the memory."""
         bucket = self.buckets.get(estimate)
         if bucket is None:
             bucket = self.buckets[estimate] = array(self.code)
