@@ -24,6 +24,11 @@ ROOT = Path(__file__).resolve().parents[1]
 IN_VENV = sys.prefix != sys.base_prefix
 
 
+INTERPRETER_HOOKS = ("sitecustomize", "usercustomize")
+"""Modules `site` loads for the interpreter itself, wherever its installation keeps them
+(Debian's Python: /etc/python3.X/sitecustomize.py); no install of ours brings them."""
+
+
 def foreign_modules() -> list[str]:
     """Imported modules whose file lies outside the places a fresh install provides."""
     stdlib = [Path(sysconfig.get_paths()[key]).resolve() for key in ("stdlib", "platstdlib")]
@@ -37,7 +42,8 @@ def foreign_modules() -> list[str]:
         if any(path.is_relative_to(root) for root in allowed):
             continue
         in_stdlib = any(path.is_relative_to(root) for root in stdlib)
-        if in_stdlib and "site-packages" not in path.parts and "dist-packages" not in path.parts:
+        in_packages = "site-packages" in path.parts or "dist-packages" in path.parts
+        if (in_stdlib or name in INTERPRETER_HOOKS) and not in_packages:
             continue
         found.append(f"{name} ({path})")
     return found
