@@ -141,7 +141,7 @@ def test_a_server_that_never_ends_a_goal_times_out_and_is_cancelled(
     short.write_text(BINDINGS.read_text().replace("result_timeout = 30.0",
                                                   "result_timeout = 0.5"))
     robot = robot_factory("--never-finish", "pick")  # type: ignore[operator]
-    done, lines = btplan_run(env, tmp_path, "--max-ticks", "120", bindings=short)
+    done, lines = btplan_run(env, tmp_path, "--max-ticks", "300", bindings=short)
     log = robot.stop()
     assert done.returncode == 1
     messages = {e["message"] for line in lines for e in line.get("errors", [])}  # type: ignore[attr-defined]
