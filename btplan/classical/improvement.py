@@ -81,6 +81,19 @@ class Improvement:
     """Whether the last neighbourhood held every state reachable from the trajectory, so
     no cheaper plan exists at all."""
 
+    def looked_at(self, depth: int, states: int, complete: bool) -> None:
+        """A neighbourhood was searched: keep the widest and largest, and the last's
+        completeness (only the last one speaks for the plan returned)."""
+        self.depth = max(self.depth, depth)
+        self.states = max(self.states, states)
+        self.complete = complete
+
+    def shortened(self, searched: int, eliminated: int) -> None:
+        """The search found a cheaper plan, `searched` steps shorter, and eliminating
+        after it removed `eliminated` more."""
+        self.searched += searched
+        self.eliminated += eliminated
+
 
 def eliminate(space: PlanSpace, plan: list[int]) -> list[int]:
     """Action elimination: drop each step that, with the later steps it alone enabled,
@@ -115,9 +128,8 @@ def improve(space: PlanSpace, plan: Sequence[GroundAction], limits: Limits, floo
     numbers = space.encode(plan)
     if numbers is None or not space.reachable or not space.valid(numbers):
         return None
-    result = Improvement(list(plan), len(plan))
     current = eliminate(space, numbers)
-    result.eliminated = len(numbers) - len(current)
+    result = Improvement(list(plan), len(plan), eliminated=len(numbers) - len(current))
     if limits.max_states > 0 and len(current) > floor:
         current = _search(space, current, result, limits, floor)
     if space.measure(current) >= space.measure(numbers):
@@ -140,14 +152,11 @@ def _search(space: PlanSpace, plan: list[int], result: Improvement, limits: Limi
         while not limits.passed():
             while area.depth < depth and not area.closed and not area.full:
                 area.grow()
-            result.depth = max(result.depth, area.depth)
-            result.states = max(result.states, len(area.states))
-            result.complete = area.closed
+            result.looked_at(area.depth, len(area.states), area.closed)
             better = area.cheapest(space.measure(plan))
             if better is not None and space.measure(better) < space.measure(plan):
                 shorter = eliminate(space, better)
-                result.searched += len(plan) - len(better)
-                result.eliminated += len(better) - len(shorter)
+                result.shortened(len(plan) - len(better), len(better) - len(shorter))
                 plan, found_at = shorter, len(area.states)
                 if len(plan) <= floor:
                     return plan  # no plan has fewer steps

@@ -68,10 +68,8 @@ class SubgoalSearch:
     def __init__(self, actions: Sequence[GroundAction]) -> None:
         self.actions = [a for a in actions if not a.delete_patterns]
         self.packed = PackedActions(self.actions)
-        self.expanded = 0
-        """States the last search expanded (for the failure message)."""
-        self.exhausted = False
-        """Whether the last search ran out of states to look at (no plan exists)."""
+        self._last: SearchRun | None = None
+        """The search begun last, whose counts the engine reports."""
         self.use_landmarks = True
         """Whether the landmark queues take part (off: h_FF and its preferred queue only)."""
         self.boost = BOOST
@@ -86,6 +84,19 @@ class SubgoalSearch:
         """Whether actions that make a landmark still to reach true are preferred too
         (beside the relaxed plan's), see `Portfolio`."""
 
+    @property
+    def expanded(self) -> int:
+        """States the last search expanded (for the failure message)."""
+        return 0 if self._last is None else self._last.expanded
+
+    @property
+    def exhausted(self) -> bool:
+        """Whether the last search ran out of states to look at (no plan exists)."""
+        return self._last is not None and self._last.exhausted
+
+    def began(self, run: SearchRun) -> None:
+        """`run` is the search now under way: its counts are the ones reported."""
+        self._last = run
     def search(
         self,
         start: frozenset[Atom],
@@ -338,7 +349,7 @@ class SearchRun:
         """The states expanded when an estimate last improved."""
         self.exhausted = False
         """Whether the search ran out of states to look at (no plan exists)."""
-        engine.expanded, engine.exhausted = 0, False
+        engine.began(self)
         packed = engine.packed
         test = packed.goal_test(goal, start)
         self.start = first = packed.encode(start)
@@ -412,7 +423,6 @@ class SearchRun:
 
     def _finish(self, exhausted: bool = False, plan: list[GroundAction] | None = None) -> None:
         self.done, self.exhausted, self.plan = True, exhausted, plan
-        self.engine.exhausted = exhausted
 
     def resume(self, deadline: float | None = None,
                states: int | None = None) -> list[GroundAction] | None:
@@ -459,7 +469,7 @@ class SearchRun:
             estimates = (int(h), future.bit_count() if marks else int(h))
             if engine.improved(estimates, self.best, turns):
                 self.better_at = self.expanded
-            self.expanded = engine.expanded = self.expanded + 1
+            self.expanded += 1
             if self.expanded >= self.max_states or self.full():
                 self._finish()
                 break
