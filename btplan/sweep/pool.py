@@ -63,6 +63,17 @@ class _Worker:
         self.run: Run | None = None
         self.since = 0.0
 
+    def give(self, run: Run) -> None:
+        """Send `run` to the worker process, timed from now (the timeout's start)."""
+        self.run, self.since = run, time.monotonic()
+        self.conn.send(run)
+
+    def take(self) -> Row:
+        """The row of the run it was given, which frees it for the next."""
+        row: Row = self.conn.recv()
+        self.run = None
+        return row
+
 
 def run_local(job: Job, runs: Sequence[Run], on_row: OnRow, jobs: int,
               timeout: float | None = None) -> None:
@@ -84,9 +95,7 @@ def run_local(job: Job, runs: Sequence[Run], on_row: OnRow, jobs: int,
                     workers.append(idle)
                 run, attempt = todo.popleft()
                 attempts[run] = attempt
-                idle.run = run
-                idle.since = time.monotonic()
-                idle.conn.send(run)
+                idle.give(run)
             busy = [w for w in workers if w.run is not None]
             left = None
             if timeout is not None:
@@ -108,9 +117,7 @@ def _collect(worker: _Worker, job: Job, workers: list[_Worker],
     assert run is not None
     try:
         if worker.conn.poll():
-            row = worker.conn.recv()
-            worker.run = None
-            on_row(row)
+            on_row(worker.take())
             return
     except (EOFError, OSError):
         worker.process.join(timeout=5)  # the pipe closed: the worker is going
