@@ -186,6 +186,7 @@ class Buckets:
         return self.size
 
     def push(self, estimate: int, entry: int) -> None:
+        """Add `entry` behind those waiting with the same estimate."""
         bucket = self.buckets.get(estimate)
         if bucket is None:
             bucket = self.buckets[estimate] = array(self.code)
