@@ -107,6 +107,18 @@ def write_atomic(path: str, text: str) -> None:
     write_bytes_atomic(path, text.encode("utf-8"))
 
 
+def write_pieces_atomic(path: str, pieces: Iterable[str]) -> None:
+    """`write_atomic` of the text `pieces` make, each encoded and written as it comes
+    (`write_chunks_atomic`), so that a large output is never whole in memory, let alone
+    twice (as text and as bytes). A stream of this process gets the text whole: nothing
+    of it is written when making a piece fails."""
+    fd = stream_of(path)
+    if fd is not None:
+        write_stream(fd, "".join(pieces))
+        return
+    write_chunks_atomic(path, (piece.encode("utf-8") for piece in pieces))
+
+
 def write_bytes_atomic(path: str, data: bytes) -> None:
     """Write `data` to `path` all at once or not at all (`write_chunks_atomic`)."""
     write_chunks_atomic(path, (data,))

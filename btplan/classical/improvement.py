@@ -53,6 +53,12 @@ regroup, further apart. Generated logistics (4 to 12 packages, 15-64 steps): med
 length 1.29 times pyperplan's with 500 states alone, 1.00 with this; gripper 1.09 and
 0.90 (bench/planning.py --domains gripper,logistics --seeds 1)."""
 
+PATIENCE_PER_STEP_MAX = 10_000
+"""...but for at most this many states: visit-all's 242-450-step plans let neighbourhoods
+that never found a shorter plan grow to 44,000-50,000 states (10 MB, a third of the
+process); with this bound they stop at 12,000-23,000, and every training problem keeps
+the plan it had."""
+
 
 SLACK_STATES = 250
 """...but, where a lower bound on the steps of any plan is known (bound.py), at most
@@ -173,5 +179,6 @@ def _search(space: PlanSpace, plan: list[int], result: Improvement, limits: Limi
 
 def _patience(steps: int, found_at: int, floor: int) -> int:
     """States a neighbourhood may reach without a better plan before the search stops."""
-    states = max(PATIENCE_STATES, PATIENCE_PER_STEP * steps, PATIENCE * found_at)
+    per_step = min(PATIENCE_PER_STEP * steps, PATIENCE_PER_STEP_MAX)
+    states = max(PATIENCE_STATES, per_step, PATIENCE * found_at)
     return min(states, SLACK_STATES * (steps - floor)) if floor else states

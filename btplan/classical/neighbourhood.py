@@ -23,12 +23,17 @@ MAX_STATES = 50_000
 neighbourhoods that shortened a plan held at most 31,000 states but one (hiking p03: two
 steps fewer at 163,000); a neighbourhood this full that finds nothing ends the search."""
 
-MAX_BYTES = 32 << 20
+MAX_BYTES = 6 << 20
 """Bytes the states of one neighbourhood may take: a state is an int of one bit per
-atom (a 100-block blocksworld's: 1.3 kB), plus what its dict entry and lists cost."""
+atom (a 100-block blocksworld's: 1.3 kB), plus what its slot, its lists and its edges
+cost (`STATE_OVERHEAD`). With this budget zenotravel p03 and parking p04 stop at 36,000
+and 30,000 states instead of 50,000, and every training problem keeps its plan; with 5 MB
+barman p01's is a step longer."""
 
-STATE_OVERHEAD = 120
-"""Bytes a state costs beyond its bits: the int's header, its dict entry, its lists."""
+STATE_OVERHEAD = 90
+"""Bytes a state costs beyond its bits, about: the int's header, its slot in the table,
+its places in the lists, its share of the edges (measured 109-161 bytes a state in all on
+zenotravel, transport, visit-all and barman, 50,000 states each)."""
 
 EDGES_PER_STATE = 16
 """Edges kept, on average, per state of the budget (8 bytes each, as arrays)."""
@@ -196,23 +201,49 @@ class Neighbourhood:
         self.space = space
         self.limits = limits
         self.max_states = limits.max_states
-        self.ids: dict[int, int] = {}
         self.states: list[int] = []
+        self._slots = array("i", bytes(4 * 1024))
+        """Open addressing by the hash of a state's bytes: its number + 1 (0: free), a
+        state found by comparing it with `states` (a dict of states to numbers took 85
+        bytes a state, these 8 to 16)."""
+        self._mask = 1023
+        self._size = (len(space.packed.atoms) + 7) // 8
         self.first = array("l", [0])
         """Where each expanded state's edges start in `actions` and `targets` (and,
         last, where the next one's will): state n's are first[n] to first[n + 1]."""
         self.actions = array("i")
         self.targets = array("i")
-        self.frontier = [self._number(state) for state in dict.fromkeys(trajectory)]
+        self.frontier = [-1 - self._number(state) for state in dict.fromkeys(trajectory)]
         self.depth = 0
         self.full = False
         """The state budget ran out: the neighbourhood cannot grow any more."""
         self._ticks = 0
 
     def _number(self, state: int) -> int:
-        number = self.ids[state] = len(self.states)
-        self.states.append(state)
-        return number
+        """The state's number, a new one (minus one) if it is new."""
+        states, slots, mask = self.states, self._slots, self._mask
+        slot = hash(state.to_bytes(self._size)) & mask
+        while True:
+            held = slots[slot]
+            if not held:
+                slots[slot] = len(states) + 1
+                states.append(state)
+                if 2 * len(states) > mask:
+                    self._grow_slots()
+                return -len(states)
+            if states[held - 1] == state:
+                return held - 1
+            slot = (slot + 1) & mask
+
+    def _grow_slots(self) -> None:
+        self._mask = mask = 2 * self._mask + 1
+        self._slots = slots = array("i", bytes(4 * (mask + 1)))
+        size = self._size
+        for number, state in enumerate(self.states, start=1):
+            slot = hash(state.to_bytes(size)) & mask
+            while slots[slot]:
+                slot = (slot + 1) & mask
+            slots[slot] = number
 
     @property
     def stored(self) -> int:
@@ -227,7 +258,7 @@ class Neighbourhood:
     def grow(self) -> None:
         """Add the states one step further from the trajectory."""
         self.depth += 1
-        ids, states, layer = self.ids, self.states, []
+        states, layer, number_of = self.states, [], self._number
         first, targets = self.first, self.targets
         successors = self.space.generator.successors
         for number in self.frontier:
@@ -239,9 +270,9 @@ class Neighbourhood:
                 self.frontier = []
                 return
             for child in children:
-                known = ids.get(child)
-                if known is None:
-                    known = self._number(child)
+                known = number_of(child)
+                if known < 0:  # new
+                    known = -1 - known
                     layer.append(known)
                 targets.append(known)
             self.actions.extend(actions)

@@ -130,8 +130,14 @@ def _plan_and_write(domain: str, problem: str | None, fmt: str | None, out: str,
             stem = folder / f"expansion_{number:03d}"
             write_atomic(f"{stem}.dot", dot)
             write_atomic(f"{stem}.json", saved)
-    text = dump(result.tree, chosen)
-    write_atomic(out, text if text.endswith("\n") else text + "\n")
+    if chosen == "json":  # the default format, written as it is made (large trees)
+        from btplan.bt.formats.saved_out import json_pieces
+        from btplan.io import write_pieces_atomic
+
+        write_pieces_atomic(out, json_pieces(result.tree))
+    else:
+        text = dump(result.tree, chosen)
+        write_atomic(out, text if text.endswith("\n") else text + "\n")
     if plan_out is not None:
         write_atomic(plan_out, plan_text(result, task.domain.has_costs))
     if not quiet:

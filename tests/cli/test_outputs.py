@@ -334,10 +334,11 @@ def test_a_full_disk_when_the_tree_is_written_is_exit_2_and_keeps_the_old_file(
     tree = tmp_path / "t.json"
     tree.write_text("the old tree\n")
 
-    def full_disk(path: str, data: bytes) -> None:
+    def full_disk(path: str, chunks: object) -> None:
         raise OSError(errno.ENOSPC, "No space left on device")
 
-    monkeypatch.setattr(btplan.io, "write_bytes_atomic", full_disk)
+    # every file output goes through it (the tree as it is made, the others whole)
+    monkeypatch.setattr(btplan.io, "write_chunks_atomic", full_disk)
     result = runner.invoke(app, ["plan", PICK, "-q", "-o", str(tree)])
     assert result.exit_code == 2, result.output
     assert "No space left on device; nothing was replaced" in result.output

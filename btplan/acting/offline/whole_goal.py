@@ -254,5 +254,5 @@ def give_back() -> None:
         import ctypes
 
         ctypes.CDLL(None).malloc_trim(0)
-    except (OSError, AttributeError):  # not glibc: the memory stays for reuse
+    except (OSError, AttributeError, TypeError):  # not glibc: the memory stays for reuse
         pass

@@ -26,6 +26,7 @@ from btplan.errors import InputError
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from collections.abc import Iterator
     from typing import Any
 
     from btplan.bt.parallel import Parallel
@@ -113,18 +114,31 @@ def tree_data(tree: BehaviorTree, with_status: bool = False) -> dict[str, Any]:
 def dump_json(tree: BehaviorTree, with_status: bool = False) -> str:
     """Indented JSON with short lists (args, ports) kept on one line: what `tree_data`
     gives, laid out as `json.dumps(..., indent=2, ensure_ascii=False)` but for those lists."""
+    return "".join(json_pieces(tree, with_status))
+
+
+def json_pieces(tree: BehaviorTree, with_status: bool = False) -> Iterator[str]:
+    """`dump_json`'s text in pieces of about PIECE_PARTS parts each, to be written as
+    they come: a large tree's text made whole, with the parts it was joined from and
+    its bytes, took four times its size (visit-all p03's tree: 3.7 MB of text, 11 MB
+    traced while it was made)."""
     out = [f'{{\n  "format": {_scalar(FORMAT)},\n  "version": {_scalar(VERSION)}']
     if tree.name != DEFAULT_NAME:
         out.append(f',\n  "name": {_scalar(tree.name)}')
     out.append(',\n  "root": ')
-    _write_node(tree.root, "  ", with_status, out)
+    yield from _write_node(tree.root, "  ", with_status, out)
     out.append("\n}\n")
-    return "".join(out)
+    yield "".join(out)
 
 
-def _write_node(node: Node, indent: str, with_status: bool, out: list[str]) -> None:
+PIECE_PARTS = 4096
+"""Parts (a field, a bracket) gathered before `json_pieces` gives them out as one piece."""
+
+
+def _write_node(node: Node, indent: str, with_status: bool, out: list[str]) -> Iterator[str]:
     """One node and its children, written into `out` at `indent` (field names are
-    plain words, written without a check)."""
+    plain words, written without a check); what `out` gathered is given out, and `out`
+    emptied, once it holds PIECE_PARTS parts."""
     inner = indent + "  "
     before = "{\n"
     for key, value in node_fields(node, with_status).items():
@@ -137,10 +151,13 @@ def _write_node(node: Node, indent: str, with_status: bool, out: list[str]) -> N
         before = "\n"
         for child in children:
             out.append(before + deeper)
-            _write_node(child, deeper, with_status, out)
+            yield from _write_node(child, deeper, with_status, out)
             before = ",\n"
         out.append(f"\n{inner}]")
     out.append(f"\n{indent}}}")
+    if len(out) >= PIECE_PARTS:
+        yield "".join(out)
+        out.clear()
 
 
 def _scalar(value: Any) -> str:
