@@ -79,6 +79,10 @@ class ActingConfig:
       plan` does (its shorter plan first) and act on that tree, growing it online where
       the world departs from it: an undisturbed run executes that plan and no more
       (btplan.acting.offline_turns); not in worlds that refine values as they run.
+    - `leave_plan_once_departed`: the first tick in which the world departs from that
+      plan (no step of it fits), drop the plan's steps and act on the backchained tree
+      alone, so that the two do not take turns under frequent outside changes
+      (btplan.acting.departures.leave_plan).
     - `wait_for_alternatives`: an action that failed is not started again while the
       alternative the tree turned to (an action started after the failure) still runs;
       its leaf fails at once instead (btplan.acting.skills). On a robot a failure takes
@@ -101,6 +105,7 @@ class ActingConfig:
     retry_failed_actions: bool = True
     plan_offline_when_stuck: bool = True
     plan_before_acting: bool = True
+    leave_plan_once_departed: bool = True
     wait_for_alternatives: bool = True
     stop_on_skill_error: bool = False
     halt_wait: float = 2.0
@@ -113,7 +118,8 @@ class ActingConfig:
                            expand_when_forced=False, skip_moved_while_held=False,
                            credit_other_goals=False, finish_halted_action=False,
                            retry_failed_actions=False, plan_offline_when_stuck=False,
-                           plan_before_acting=False, wait_for_alternatives=False),
+                           plan_before_acting=False, leave_plan_once_departed=False,
+                           wait_for_alternatives=False),
                        **changes)
 
     @classmethod

@@ -434,6 +434,18 @@ class BlendedLoop:
         self.dead.update(checks)
         self.searches += 1
 
+    def narrow_to(self, part: Node) -> None:
+        """Act on `part`, a subtree of the tree, as the whole tree from here on: its nodes,
+        their statuses and what was expanded in them stay; what lay around it is halted
+        and detached."""
+        root = self.tree.root
+        if part is root:
+            return
+        if part.parent is not None:
+            part.parent.remove(part)
+        root.halt(self.skills)
+        self.tree.root = part
+
     def adopt_plan(self, steps: list[GroundAction]) -> None:
         """Put a plan for the whole goal behind the goal tree (`plan_whole_goal`)."""
         adopt_plan(self, steps)

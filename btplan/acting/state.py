@@ -200,6 +200,10 @@ class LoopState(Protocol):
         the checks it brings."""
         ...
 
+    def narrow_to(self, part: Node) -> None:
+        """Act on `part`, a subtree of the tree, as the whole tree from here on."""
+        ...
+
 
 class EarlyQueue(Protocol):
     """The early expansions' queue, as departures add to it."""

@@ -12,6 +12,8 @@
 - `protect.ProtectGoals`, `regrow.Regrow`, `search.LastResortSearch`: the planner's
   `protect_goals`, `refine_more` and `search_stuck` options while acting
   (`refined_search` for worlds that refine values).
+- `leave_plan.LeavePlan`: act on the backchained tree alone once the world departs
+  from the plan that planning before acting put first.
 - `chosen.departures_for`: which of them a configuration switches on.
 """
 

@@ -42,6 +42,11 @@ def departures_for(config: ActingConfig, options: PlannerOptions) -> list[Depart
         from btplan.acting.departures.finishing import FinishHalted
 
         chosen.append(FinishHalted())
+    if config.leave_plan_once_departed and (config.plan_before_acting
+                                            or config.plan_offline_when_stuck):
+        from btplan.acting.departures.leave_plan import LeavePlan
+
+        chosen.append(LeavePlan())
     if options.refine_more:
         from btplan.acting.departures.regrow import Regrow
 

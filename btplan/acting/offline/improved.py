@@ -28,6 +28,7 @@ from btplan.bt import Sequence as SequenceNode
 from btplan.model import GroundAction, GroundLiteral, Task
 from btplan.planner import AchieverIndex, condition_node
 from btplan.planner.expand import GOAL_CHECK, action_node
+from btplan.planner.plan_first import IMPROVED, UNTIL_DONE
 from btplan.classical import Improvement, improve
 from btplan.classical import Limits, PlanSpace
 from btplan.classical import PackedActions
@@ -57,15 +58,6 @@ PACKED_BYTES = 64 << 20
 """The most memory the grounded actions packed as bit masks may take for the
 neighbourhood search (an estimate: `packed_for`)."""
 
-IMPROVED = "shorter plan first"
-"""Name of the Fallback that holds the shorter plan's steps ahead of the backchained tree."""
-
-UNTIL_DONE = "step by step until the goals hold"
-"""Name of the Retry at the root: a step that finishes within its tick leaves the goals
-not yet true, and the final check fails; the Retry answers RUNNING then (BT.CPP 4's
-RetryUntilSuccessful tries a child that failed at once again on the next tick), so the
-tree reports FAILURE only when it is stuck: after twice as many failed ticks as the
-plan has steps."""
 
 
 def budget(started: float, now: float, deadline: float | None) -> float:
