@@ -436,15 +436,8 @@ class BlendedLoop:
 
     def narrow_to(self, part: Node) -> None:
         """Act on `part`, a subtree of the tree, as the whole tree from here on: its nodes,
-        their statuses and what was expanded in them stay; what lay around it is halted
-        and detached."""
-        root = self.tree.root
-        if part is root:
-            return
-        if part.parent is not None:
-            part.parent.remove(part)
-        root.halt(self.skills)
-        self.tree.root = part
+        their statuses and what was expanded in them stay; the rest is halted and dropped."""
+        self.tree.narrow_to(part, self.skills)
 
     def adopt_plan(self, steps: list[GroundAction]) -> None:
         """Put a plan for the whole goal behind the goal tree (`plan_whole_goal`)."""

@@ -62,6 +62,17 @@ class BehaviorTree:
         """Halt everything the tree has RUNNING (the world is told of each action)."""
         self.root.halt(world)
 
+    def narrow_to(self, part: Node, world: World) -> None:
+        """Make `part`, a subtree, the root: it is detached with its nodes' statuses (an
+        action it runs goes on), and what lay around it is halted and dropped."""
+        root = self.root
+        if part is root:
+            return
+        if part.parent is not None:
+            part.parent.remove(part)
+        root.halt(world)
+        self.root = part
+
     def nodes(self) -> list[Node]:
         """Every node, depth first, left to right."""
         return self.root.walk()
