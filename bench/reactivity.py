@@ -129,6 +129,7 @@ def verdicts(points: Sequence[Point], rows: Sequence[Row]) -> list[tuple[str, ..
         best_ticks = min(b.ticks.value for b in base)
         need = 5.0 if p.rate >= 0.1 else 1.0
         mine_total = total[(p.scenario, p.method, p.rate)]
+        reacting = _above_undisturbed(p, base, keyed)
         out.append((
             p.scenario, f"{p.rate:g}", f"{p.planning_ms.value:.2f} vs {best_time:.2f}",
             _ratio(p.planning_ms.value, best_time, need),
@@ -137,8 +138,31 @@ def verdicts(points: Sequence[Point], rows: Sequence[Row]) -> list[tuple[str, ..
             + ("met" if p.success.value >= best_success else "**missed**"),
             f"{p.ticks.value:.0f} vs {best_ticks:.0f} "
             + ("met" if p.ticks.value <= 1.1 * best_ticks else "**missed**"),
+            reacting,
         ))
     return out
+
+
+def _above_undisturbed(p: Point, base: Sequence[Point], keyed: dict[tuple[str, str, float], Point]
+                       ) -> str:
+    """Planning CPU spent on reacting: each method's median at this rate less its median
+    with no disturbance (which both pay before the first action), btplan's against the
+    least of the baselines'. No target: it tells the plan made before acting apart from
+    what the disturbances cost."""
+    if p.rate == 0:
+        return ""
+
+    def above(q: Point) -> float | None:
+        calm = keyed.get((q.scenario, q.method, 0.0))
+        return None if calm is None else q.planning_ms.value - calm.planning_ms.value
+
+    mine = above(p)
+    theirs = [a for a in (above(b) for b in base) if a is not None]
+    if mine is None or not theirs:
+        return ""
+    best = min(theirs)
+    ratio = f"{best / mine:.1f}x" if mine > 0 else "(btplan: none)"
+    return f"{mine:.2f} vs {best:.2f} ({ratio})"
 
 
 def explain_failures(rows: Sequence[Row], jobs: int = 1,
@@ -199,7 +223,8 @@ def report(rows: Sequence[Row], jobs: int = 1, cache: Path | None = None) -> str
             markdown_table(points),
             "\n### Targets (btplan against the best baseline at each point)\n\n",
             _table(("scenario", "rate", "planning ms: btplan vs best", "lower by",
-                    "with set-up", "lower by", "success", "ticks to goal"),
+                    "with set-up", "lower by", "success", "ticks to goal",
+                    "reacting ms: above p = 0, btplan vs best"),
                    verdicts(points, rows)),
             "\n### Failed runs\n\n"]
     failures = explain_failures(rows, jobs, cache)
