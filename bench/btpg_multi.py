@@ -145,8 +145,8 @@ def pyperplan_plan(domain: str, problem: str, max_states: int,
     deadline = time.monotonic() + seconds
     parser = Parser(None, None)
     parser.domInput, parser.probInput = without_costs(domain), without_costs(problem)
-    task = grounding.ground(parser.parse_problem(parser.parse_domain(False), False))
-    estimate = hFFHeuristic(task)
+    grounded = grounding.ground(parser.parse_problem(parser.parse_domain(False), False))
+    estimate = hFFHeuristic(grounded)
     evaluated = 0
 
     def limited(node: Any) -> float:
@@ -156,7 +156,7 @@ def pyperplan_plan(domain: str, problem: str, max_states: int,
             raise Limit
         return float(estimate(node))
 
-    found = greedy_best_first_search(task, limited)
+    found = greedy_best_first_search(grounded, limited)
     return None if found is None else [str(op.name) for op in found]
 
 
