@@ -37,7 +37,10 @@ imports (its simulators and LLM clients are not needed; the driver stands in for
     python bench/btpg.py --first 2 --no-cli          # btplan alone, two goals
 
 Without --btpg-src the BTPG half is skipped and btplan's numbers are printed alone.
-bench/results/btpg_rw_single.txt is a run on the RoboWaiter set.
+A goal of a multi-goal set (bench/btpg_multi.py makes one from a single-goal set:
+bench/problems/btpg_rw_multi/) is a conjunction, a set of literals to BTPG; when a
+planner fails on some goals, the medians are also given over the goals all solve.
+bench/results/btpg_rw_single.txt and btpg_rw_multi.txt are runs on the RoboWaiter sets.
 """
 
 from __future__ import annotations
@@ -67,7 +70,7 @@ ROOT = HERE.parent
 DEFAULT_SET = HERE / "problems" / "btpg_rw_single"
 BTPLAN = "btplan"
 BTPG_PLANNERS = ("OBTEA", "HBTP", "BTExpansion")
-TARGET = ("BTPG single goals: median planning time at most the best BTPG planner's, "
+TARGET = ("BTPG {difficulty} goals: median planning time at most the best BTPG planner's, "
           "every goal solved, equal plan cost")
 
 if str(HERE) not in sys.path:
@@ -115,6 +118,8 @@ class GoalSet:
     goals: list[Goal]
     btpg_names: dict[str, str]
     """BTPG's action names to the PDDL ones."""
+    difficulty: str = "single"
+    """"single" (one goal literal) or "multi" (a conjunction, bench/btpg_multi.py)."""
 
 
 def read_set(folder: Path, first: int | None) -> GoalSet:
@@ -122,7 +127,8 @@ def read_set(folder: Path, first: int | None) -> GoalSet:
     goals = [Goal(r["index"], r["goal"], folder / r["problem"])
              for r in meta["records"] if "problem" in r][:first]
     names = {btpg: pddl for pddl, btpg in meta["action_names"].items()}
-    return GoalSet(folder.name, folder, folder / "domain.pddl", goals, names)
+    return GoalSet(folder.name, folder, folder / "domain.pddl", goals, names,
+                   meta.get("difficulty", "single"))
 
 
 def checked(outcome: Outcome, goals: GoalSet, goal: Goal, steps: Sequence[str]) -> Outcome:
@@ -320,7 +326,7 @@ def per_goal(outcomes: Sequence[Outcome]) -> tuple[list[str], dict[str, list[flo
         lines.append(
             f"{index:>4} {mine.goal[:28]:<28} {fastest.planner if fastest else '-':<12} "
             f"{ms(fastest.seconds if fastest else None):>7} {ms(mine.seconds):>9} "
-            f"{times(values['time'], 0):>7} {times(values['nodes']):>6} "
+            f"{times(values['time'], 1):>7} {times(values['nodes']):>6} "
             f"{times(values['expansions']):>6}  "
             f"{number(mine.plan_cost)}/{number(cheapest.plan_cost if cheapest else None)}")
     return lines, ratios
@@ -342,12 +348,33 @@ def lowest_cost(outcomes: Sequence[Outcome], index: int) -> float | None:
     return min(costs) if costs else None
 
 
-def targets(outcomes: Sequence[Outcome]) -> list[str]:
+def common_goals(outcomes: Sequence[Outcome], planners: Sequence[str]) -> list[str]:
+    """Medians over the goals every planner solved, so that no planner's median leaves out
+    the goals it failed on; btplan's against the BTPG planner fastest there."""
+    indices = {o.index for o in outcomes}
+    common = sorted(i for i in indices if all(
+        any(o.index == i and o.planner == p and o.solved for o in outcomes) for p in planners))
+    if len(planners) < 2 or len(common) == len(indices) or not common:
+        return []
+    shared = [o for o in outcomes if o.index in common]
+    lines = ["", f"on the {len(common)} goals all {len(planners)} planners solve:",
+             *planner_table(shared, planners)]
+    medians = {p: median([o.seconds for o in shared if o.planner == p]) for p in planners}
+    theirs = [p for p in planners if p != BTPLAN]
+    if BTPLAN in planners and theirs:
+        best = min(theirs, key=lambda p: medians[p] or float("inf"))
+        lines.append(f"btplan {ms(medians[BTPLAN])} ms vs {best} {ms(medians[best])} ms: "
+                     f"{times(ratio(medians[BTPLAN], medians[best]))}")
+    return lines
+
+
+def targets(outcomes: Sequence[Outcome], difficulty: str) -> list[str]:
     """The target, judged against the BTPG planner with the lowest median time."""
+    target = TARGET.format(difficulty=difficulty)
     mine = [o for o in outcomes if o.planner == BTPLAN]
     theirs = [p for p in BTPG_PLANNERS if any(o.planner == p and o.solved for o in outcomes)]
     if not theirs:
-        return [f"target  {TARGET}: not judged (no BTPG run: give --btpg-src and --btpg-python)"]
+        return [f"target  {target}: not judged (no BTPG run: give --btpg-src and --btpg-python)"]
     medians = {p: median([o.seconds for o in outcomes if o.planner == p and o.solved])
                for p in theirs}
     best = min(theirs, key=lambda p: medians[p] or float("inf"))
@@ -360,7 +387,7 @@ def targets(outcomes: Sequence[Outcome]) -> list[str]:
                 for o in solved)
     all_solved = len(solved) == len(mine) > 0
     return [
-        f"target  {TARGET}: {verdict(fast and all_solved and equal == len(mine))}",
+        f"target  {target}: {verdict(fast and all_solved and equal == len(mine))}",
         f"  median planning time: btplan {ms(mine_total)} ms (problem+plan) vs {best} "
         f"{ms(medians[best])} ms (process()), {times(ratio(mine_total, medians[best]), 1)}: "
         f"{verdict(fast)}",
@@ -401,7 +428,8 @@ def report(goals: GoalSet, outcomes: Sequence[Outcome], timeout: float, repeat: 
                   "expansions: the fewest; cost: btplan's / the lowest):", *goal_lines]
         lines.append("median of the ratios: " + ", ".join(
             f"{key} {times(median(values))}" for key, values in ratios.items()))
-    lines += ["", *targets(outcomes)]
+    lines += common_goals(outcomes, planners)
+    lines += ["", *targets(outcomes, goals.difficulty)]
     return "\n".join(lines)
 
 

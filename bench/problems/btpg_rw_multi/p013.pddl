@@ -1,0 +1,6 @@
+; multi-goal 13: IsClean_Floor & On_Coffee_Table2
+(define (problem btpg-rw-multi-013)
+  (:domain btpg-rw)
+  (:init (exists_ admilk) (exists_ bernachon) (exists_ bottleddrink) (exists_ chips) (exists_ milk) (exists_ milkdrink) (exists_ nfcjuice) (exists_ softdrink) (exists_ springwater) (exists_ vacuumcup) (exists_ yogurt) (holding nothing) (robotnear bar) (= (total-cost) 0))
+  (:goal (and (isclean floor) (on coffee table2)))
+  (:metric minimize (total-cost)))

@@ -1,0 +1,6 @@
+; multi-goal 20: Low_ACTemperature & Holding_ADMilk & On_Yogurt_BrightTable6
+(define (problem btpg-rw-multi-020)
+  (:domain btpg-rw)
+  (:init (exists_ admilk) (exists_ bernachon) (exists_ bottleddrink) (exists_ chips) (exists_ milk) (exists_ milkdrink) (exists_ nfcjuice) (exists_ softdrink) (exists_ springwater) (exists_ vacuumcup) (exists_ yogurt) (holding nothing) (robotnear bar) (= (total-cost) 0))
+  (:goal (and (low actemperature) (holding admilk) (on yogurt brighttable6)))
+  (:metric minimize (total-cost)))
