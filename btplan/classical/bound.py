@@ -40,6 +40,10 @@ class Cuts:
         self.pre = [tuple(set(p)) or (self.start_atom,) for p in pre]
         self.add = [tuple(a) for a in add]
         self.by_pre: list[list[int]] = [[] for _ in range(atoms + 2)]
+        self.unnumbered = 0
+        """Atoms of the start state left unnumbered (no action here needs or adds them):
+        the work a bound may take counts them as if they were, so that whether it is
+        computed does not depend on how many atoms the numbering kept."""
         for i, needed in enumerate(self.pre):
             for atom in needed:
                 self.by_pre[atom].append(i)
@@ -61,7 +65,7 @@ class Cuts:
         cost = [1] * goal_action + [0] if costs is None else [*costs, 0]
         least = min((c for c in cost if c > 0), default=1)
         first = {*start, self.start_atom}
-        per_round = sum(len(p) for p in pre) + len(first)
+        per_round = sum(len(p) for p in pre) + len(first) + self.unnumbered
         if per_round * -(-enough // least) > work:
             return 0  # the rounds `enough` may need would take too long
         total = 0
@@ -218,10 +222,7 @@ def _numbered(relaxed: RelaxedModel, state: frozenset[Atom], goal: Iterable[Grou
                 goals.append(ids[literal.atom])
             elif literal.atom not in state:
                 return None
-    adders: dict[int, list[int]] = {}
-    for i, added in enumerate(add):
-        for atom in added:
-            adders.setdefault(atom, []).append(i)
+    adders = relaxed.adders()
     wanted, todo, relevant = set(goals), list(goals), set()
     while todo:
         for i in adders.get(todo.pop(), ()):
@@ -232,5 +233,15 @@ def _numbered(relaxed: RelaxedModel, state: frozenset[Atom], goal: Iterable[Grou
                         wanted.add(atom)
                         todo.append(atom)
     kept = sorted(relevant)
-    cuts = Cuts([pre[i] for i in kept], [add[i] for i in kept], len(ids))
-    return cuts, [ids[a] for a in state if a in ids], goals, kept
+    for i in kept:
+        wanted.update(add[i])
+    # The relevant atoms numbered anew in the model's order (ties in h_max's queue go as
+    # over the whole model), so that each round's lists are as short as the goal's part.
+    local = {atom: n for n, atom in enumerate(sorted(wanted))}
+    cuts = Cuts([[local[a] for a in pre[i]] for i in kept],
+                [[local[a] for a in add[i]] for i in kept], len(local))
+    start = [ids[a] for a in state if a in ids]
+    cuts.unnumbered = len(start)
+    start = [local[a] for a in start if a in local]
+    cuts.unnumbered -= len(start)
+    return cuts, start, [local[g] for g in goals], kept
