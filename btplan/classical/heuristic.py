@@ -82,6 +82,8 @@ class RelaxedModel:
         self._action_cost = [float(act.cost) for act in self.actions]
         self._uniform = len(set(self._action_cost)) <= 1
         self._adders: dict[int, list[int]] | None = None
+        self._whole = all(c.is_integer() and c >= 0 for c in self._action_cost)
+        self._visits: int | None = None
         self._integral = all(c.is_integer() and 0 <= c < 2 ** 40 for c in self._action_cost)
         self._pre_ids: list[tuple[int, ...]] | None = None
         self._by_pre_id: list[list[int]] = [[] for _ in ids]
@@ -111,6 +113,18 @@ class RelaxedModel:
     def uniform(self) -> bool:
         """Whether every action costs the same."""
         return self._uniform
+
+    def whole_costs(self) -> bool:
+        """Whether every action's cost is a whole, non-negative number (bound.py's sums
+        are exact then)."""
+        return self._whole
+
+    def precondition_visits(self) -> int:
+        """The preconditions of all actions, an action without any counted once: what a
+        round of LM-cut over the whole model visits at most (bound.py's work limit)."""
+        if self._visits is None:
+            self._visits = sum(max(1, len(set(pre))) for pre in self._pre)
+        return self._visits
 
     def action_costs(self) -> list[float]:
         """Each action's cost, in the order of `actions` (and of `numbered`)."""
