@@ -30,6 +30,7 @@ if TYPE_CHECKING:
     from typing import TypeVar
 
     from btplan.classical import PackedActions
+    from btplan.planner.candidates import Tables
 
     K = TypeVar("K", bound=Hashable)
     V = TypeVar("V")
@@ -49,6 +50,8 @@ class Grounded:
         self.relaxed: RelaxedModel | None = None
         self.packed: PackedActions | None = None
         self.packed_bytes: int | None = None
+        self.tables: Tables | None = None
+        """The relaxed model's groundings tabled per template (candidates.py)."""
         self._mutexes: OrderedDict[frozenset[Atom], Mutexes] = OrderedDict()
 
     def mutexes(self, initial: frozenset[Atom], actions: Callable[[], Sequence[GroundAction]],
