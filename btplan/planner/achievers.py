@@ -123,6 +123,13 @@ class AchieverIndex:
             action = made[(template.name, args)] = self.task.instantiate(template, args)
         return action
 
+    @property
+    def groundings(self) -> dict[tuple[str, tuple[str, ...]], GroundAction]:
+        """What `ground` made, by action name and arguments, kept for the task's problem
+        (reuse.py): a symbolic world grounding the actions it runs can share them, as the
+        next planning call's worlds then find them made."""
+        return self._shared.made
+
     def has_effect(self, condition: GroundLiteral) -> bool:
         """Whether any action template has an effect of this predicate and sign."""
         return bool(self._by_effect.get((condition.atom.predicate, condition.positive)))
