@@ -258,7 +258,7 @@ class AchieverIndex:
         limit_bindings = self.options.max_bindings
         effects = self._by_effect.get((condition.atom.predicate, condition.positive), [])
         tables = None if relaxed is None else self._tables(relaxed)
-        for way in self.static.ways(condition, effects):
+        for way in self.static.ways(condition, effects, self._shared.problem.partials):
             picked = None
             if relaxed is not None:
                 picked = self.static.pick(way, state, reachable, limit_bindings, relaxed.actions,

@@ -70,6 +70,10 @@ class _Table:
         return index.get(tuple([partial[n] for n in names]), [])
 
 
+Partials = dict[GroundLiteral, list[tuple[ActionTemplate, int, dict[str, str]]]]
+"""Per condition, the effects (template, effect number) unifying with it, and how."""
+
+
 class Way:
     """One effect of one template unified with a condition: a way to make it hold."""
 
@@ -101,15 +105,25 @@ class StaticBindings:
         self._state_ok = False
 
     def ways(self, condition: GroundLiteral,
-             effects: Sequence[tuple[ActionTemplate, int, Literal]]) -> list[Way]:
-        """The effects that unify with `condition` (grounding.unify), worked out once."""
+             effects: Sequence[tuple[ActionTemplate, int, Literal]],
+             kept: Partials | None = None) -> list[Way]:
+        """The effects that unify with `condition` (grounding.unify), worked out once.
+
+        `kept`: the unifications of earlier tasks with the same objects and types, for
+        the same `effects` of each condition (the domain's index), by condition: they
+        depend on nothing else, and a planning call on a kept domain finds them."""
         found = self._ways.get(condition)
         if found is None:
-            found = self._ways[condition] = []
-            for template, number, effect in effects:
-                partial = unify(self.task, template, effect, condition.atom, self.objects)
-                if partial is not None:
-                    found.append(Way(template, number, partial))
+            partials = None if kept is None else kept.get(condition)
+            if partials is None:
+                partials = []
+                for template, number, effect in effects:
+                    partial = unify(self.task, template, effect, condition.atom, self.objects)
+                    if partial is not None:
+                        partials.append((template, number, partial))
+                if kept is not None:
+                    kept[condition] = partials
+            found = self._ways[condition] = [Way(*made) for made in partials]
         return found
 
     def _static_part(self, state: frozenset[Atom]) -> frozenset[Atom]:

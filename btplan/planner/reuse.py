@@ -30,7 +30,7 @@ if TYPE_CHECKING:
     from typing import TypeVar
 
     from btplan.classical import PackedActions
-    from btplan.planner.candidates import Tables
+    from btplan.planner.candidates import Partials, Tables
 
     K = TypeVar("K", bound=Hashable)
     V = TypeVar("V")
@@ -67,6 +67,8 @@ class Problem:
         self.made: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
         """The grounded actions, by template name and arguments."""
         self._grounded: OrderedDict[Hashable, Grounded] = OrderedDict()
+        self.partials: Partials = {}
+        """How each condition unifies with the effects of the domain's index (candidates.py)."""
 
     def grounded(self, task: Task, reach: bool) -> Grounded:
         """The relaxed model's place for `task`, grounded by reachability or not."""
