@@ -106,6 +106,7 @@ def build(cls: type[T], *, frozen: bool, slots: bool, kw_only: bool) -> type[T]:
         __record_values__=_getter(names), __record_required__=frozenset(
             n for n in names if n not in defaults),
         __record_start__={n: defaults.get(n, _MISSING) for n in names},
+        __record_least__=sum(1 for n in names if n not in defaults),
         __record_post__=getattr(cls, "__post_init__", None),
         __record_factories__=tuple((n, d.default_factory) for n, d in defaults.items()
                                    if isinstance(d, Field)),
@@ -140,6 +141,14 @@ def _init(self: Any, *args: Any, **kwargs: Any) -> None:
     if not kwargs and len(args) == len(names) and not cls.__record_kw_only__:
         for name, value in zip(names, args):  # every field given in order: the common case
             _set(self, name, value)
+    elif (not kwargs and cls.__record_least__ <= len(args) < len(names)
+          and not cls.__record_kw_only__):
+        for name, value in zip(names, args):  # the first fields, the rest left to defaults
+            _set(self, name, value)
+        start = cls.__record_start__
+        for name in names[len(args):]:
+            value = start[name]
+            _set(self, name, value.default_factory() if isinstance(value, Field) else value)
     elif not args and cls.__record_in_dict__ and cls.__record_required__ <= kwargs.keys():
         values = dict(cls.__record_start__)  # a frozen model by keyword: set in one go
         values.update(kwargs)
@@ -196,6 +205,12 @@ def _bind(self: Any, cls: type, names: tuple[str, ...], args: tuple[Any, ...],
 def _values(self: Any) -> tuple[Any, ...]:
     values: tuple[Any, ...] = type(self).__record_values__(self)
     return values
+
+
+def field_values(obj: Any, /) -> tuple[Any, ...]:
+    """The record's fields' values in order, as they are (`dataclasses.astuple` copies
+    them, deeply): what it compares and hashes by."""
+    return _values(obj)
 
 
 def _getter(names: list[str]) -> Callable[[Any], tuple[Any, ...]]:
