@@ -57,6 +57,10 @@ def write_all(fd: int, data: bytes) -> None:
         view = view[os.write(fd, view):]
 
 
+FIRST_READ = 1 << 16
+"""Bytes read first from an input file (less than MAX_INPUT_BYTES): most inputs whole."""
+
+
 def read_text(path: str) -> str:
     """Read a UTF-8 text file, or standard input for `-`, with errors a user can act on;
     a leading byte order mark is dropped and line ends become LF.
@@ -66,17 +70,20 @@ def read_text(path: str) -> str:
     if path == STDIO:
         data = sys.stdin.buffer.read(MAX_INPUT_BYTES + 1)
     else:
-        p = Path(path)
-        if p.is_dir():
-            raise InputError("is a directory, not a file", Span(path, 1, 1))
         try:
             # One byte past the limit is enough to refuse; a device or a pipe that never
-            # ends (/dev/zero) is read no further.
-            with p.open("rb") as handle:
-                data = handle.read(MAX_INPUT_BYTES + 1)
+            # ends (/dev/zero) is read no further. A first read of FIRST_READ bytes takes
+            # a small file whole: asked for the whole limit at once, Python makes a
+            # buffer of that size, which cost a small problem's reading 18 us of 370.
+            with open(path, "rb") as handle:
+                data = handle.read(FIRST_READ)
+                if len(data) == FIRST_READ:
+                    data += handle.read(MAX_INPUT_BYTES + 1 - FIRST_READ)
         except FileNotFoundError:
             raise InputError("no such file", Span(path, 1, 1)) from None
         except OSError as error:
+            if os.path.isdir(path):  # opening one refuses it, in words that differ by system
+                raise InputError("is a directory, not a file", Span(path, 1, 1)) from None
             raise InputError(f"cannot read: {error.strerror}", Span(path, 1, 1)) from None
     check_size(len(data), path)
     if b"\x00" in data:

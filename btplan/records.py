@@ -106,7 +106,10 @@ def build(cls: type[T], *, frozen: bool, slots: bool, kw_only: bool) -> type[T]:
         __record_values__=_getter(names), __record_required__=frozenset(
             n for n in names if n not in defaults),
         __record_start__={n: defaults.get(n, _MISSING) for n in names},
+        __record_least__=sum(1 for n in names if n not in defaults),
         __record_post__=getattr(cls, "__post_init__", None),
+        __record_factories__=tuple((n, d.default_factory) for n, d in defaults.items()
+                                   if isinstance(d, Field)),
         __record_in_dict__=frozen and not slots and not any(
             isinstance(d, Field) for d in defaults.values()),
         __init__=_init, __repr__=_repr, __eq__=_eq, __dataclass_fields__=_DataclassFields())
@@ -138,12 +141,30 @@ def _init(self: Any, *args: Any, **kwargs: Any) -> None:
     if not kwargs and len(args) == len(names) and not cls.__record_kw_only__:
         for name, value in zip(names, args):  # every field given in order: the common case
             _set(self, name, value)
+    elif (not kwargs and cls.__record_least__ <= len(args) < len(names)
+          and not cls.__record_kw_only__):
+        for name, value in zip(names, args):  # the first fields, the rest left to defaults
+            _set(self, name, value)
+        start = cls.__record_start__
+        for name in names[len(args):]:
+            value = start[name]
+            _set(self, name, value.default_factory() if isinstance(value, Field) else value)
     elif not args and cls.__record_in_dict__ and cls.__record_required__ <= kwargs.keys():
         values = dict(cls.__record_start__)  # a frozen model by keyword: set in one go
         values.update(kwargs)
         if len(values) != len(names):
             _bind(self, cls, names, args, kwargs)  # an unknown keyword: refused there
         self.__dict__.update(values)
+    elif not args and cls.__record_required__ <= kwargs.keys():
+        values = dict(cls.__record_start__)  # by keyword: the defaults, then what is given
+        values.update(kwargs)
+        if len(values) != len(names):
+            _bind(self, cls, names, args, kwargs)  # an unknown keyword: refused there
+        for name, made in cls.__record_factories__:
+            if name not in kwargs:
+                values[name] = made()
+        for name, value in values.items():
+            _set(self, name, value)
     else:
         _bind(self, cls, names, args, kwargs)
     post = cls.__record_post__  # looked up when the class was made: a subclass is made too
@@ -184,6 +205,12 @@ def _bind(self: Any, cls: type, names: tuple[str, ...], args: tuple[Any, ...],
 def _values(self: Any) -> tuple[Any, ...]:
     values: tuple[Any, ...] = type(self).__record_values__(self)
     return values
+
+
+def field_values(obj: Any, /) -> tuple[Any, ...]:
+    """The record's fields' values in order, as they are (`dataclasses.astuple` copies
+    them, deeply): what it compares and hashes by."""
+    return _values(obj)
 
 
 def _getter(names: list[str]) -> Callable[[Any], tuple[Any, ...]]:
@@ -244,11 +271,20 @@ def _setstate(self: Any, state: list[Any]) -> None:
 
 
 def replace(obj: T, /, **changes: Any) -> T:
-    """A copy of the record with some fields changed, as `dataclasses.replace`."""
-    for name in obj.__record_fields__:  # type: ignore[attr-defined]
-        if name not in changes:
-            changes[name] = getattr(obj, name)
-    return type(obj)(**changes)
+    """A copy of the record with some fields changed, as `dataclasses.replace`.
+
+    Every field is passed in order, positionally, where the record's own `__init__`
+    takes them so: the quickest way through it (a planning call makes a few dozen
+    copies)."""
+    cls = type(obj)
+    if cls.__record_kw_only__ or cls.__init__ is not _init:  # type: ignore[attr-defined]
+        for name in cls.__record_fields__:  # type: ignore[attr-defined]
+            if name not in changes:
+                changes[name] = getattr(obj, name)
+        return cls(**changes)
+    values = [changes.pop(name) if name in changes else getattr(obj, name)
+              for name in cls.__record_fields__]  # type: ignore[attr-defined]
+    return cls(*values, **changes)  # a change left over is no field: __init__ refuses it
 
 
 class _DataclassFields:

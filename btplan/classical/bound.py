@@ -40,6 +40,10 @@ class Cuts:
         self.pre = [tuple(set(p)) or (self.start_atom,) for p in pre]
         self.add = [tuple(a) for a in add]
         self.by_pre: list[list[int]] = [[] for _ in range(atoms + 2)]
+        self.unnumbered = 0
+        """Atoms of the start state left unnumbered (no action here needs or adds them):
+        the work a bound may take counts them as if they were, so that whether it is
+        computed does not depend on how many atoms the numbering kept."""
         for i, needed in enumerate(self.pre):
             for atom in needed:
                 self.by_pre[atom].append(i)
@@ -61,7 +65,7 @@ class Cuts:
         cost = [1] * goal_action + [0] if costs is None else [*costs, 0]
         least = min((c for c in cost if c > 0), default=1)
         first = {*start, self.start_atom}
-        per_round = sum(len(p) for p in pre) + len(first)
+        per_round = sum(len(p) for p in pre) + len(first) + self.unnumbered
         if per_round * -(-enough // least) > work:
             return 0  # the rounds `enough` may need would take too long
         total = 0
@@ -181,6 +185,9 @@ def no_better_plan(relaxed: RelaxedModel, state: frozenset[Atom],
     the improvement pass, most of a call's time (bench/fixed_cost.py)."""
     if not float(cost).is_integer() or _too_long(relaxed, steps, 1, work):
         return False
+    goal = tuple(goal)  # read more than once
+    if steps == 1 and _cheapest_step(relaxed, state, goal, cost, work):
+        return True  # what the bound below answers, known without it
     found = _numbered(relaxed, state, goal)
     if found is None:
         return True  # no plan at all
@@ -191,6 +198,34 @@ def no_better_plan(relaxed: RelaxedModel, state: frozenset[Atom],
         return False
     return (cuts.bound(start, goals, int(cost), work, [int(c) for c in costs]) >= cost
             and cuts.bound(start, goals, steps, work) >= steps)
+
+
+def _cheapest_step(relaxed: RelaxedModel, state: frozenset[Atom],
+                   goal: tuple[GroundLiteral, ...], cost: float, work: int) -> bool:
+    """Whether a plan of one step costing `cost` is shown best without LM-cut's rounds:
+    no action of the model adding some goal atom that `state` lacks costs less.
+
+    Most RoboWaiter goals are planned in one such step, and the rounds were a third of
+    their planning call. Where this holds, `no_better_plan` answers yes too: a goal is
+    false, so every plan has a step; LM-cut is at least h_max (Helmert and Domshlak
+    2009), h_max at least the cheapest achiever of any goal atom, so the bound with the
+    actions' costs reaches `cost`; with unit costs its first round's cut is not empty,
+    so it reaches 1. Only taken where both bounds would be computed: every cost whole
+    and non-negative (each round then takes 1 at least), and the rounds' work, counted
+    over the whole model (at least what the goal's part counts), within `work`."""
+    if not relaxed.whole_costs():
+        return False
+    visits = relaxed.precondition_visits() + len(state) + 2 + len(goal)
+    if visits * max(1, int(cost)) > work:
+        return False
+    ids = relaxed.numbered()[0]
+    adders, costs = relaxed.adders(), relaxed.action_costs()
+    for literal in goal:
+        at = ids.get(literal.atom) if literal.positive and literal.atom not in state else None
+        if at is not None and min((costs[i] for i in adders.get(at, ())),
+                                  default=INFINITE) >= cost:
+            return True
+    return False
 
 
 def _too_long(relaxed: RelaxedModel, enough: int, least: int, work: int) -> bool:
@@ -218,10 +253,7 @@ def _numbered(relaxed: RelaxedModel, state: frozenset[Atom], goal: Iterable[Grou
                 goals.append(ids[literal.atom])
             elif literal.atom not in state:
                 return None
-    adders: dict[int, list[int]] = {}
-    for i, added in enumerate(add):
-        for atom in added:
-            adders.setdefault(atom, []).append(i)
+    adders = relaxed.adders()
     wanted, todo, relevant = set(goals), list(goals), set()
     while todo:
         for i in adders.get(todo.pop(), ()):
@@ -232,5 +264,15 @@ def _numbered(relaxed: RelaxedModel, state: frozenset[Atom], goal: Iterable[Grou
                         wanted.add(atom)
                         todo.append(atom)
     kept = sorted(relevant)
-    cuts = Cuts([pre[i] for i in kept], [add[i] for i in kept], len(ids))
-    return cuts, [ids[a] for a in state if a in ids], goals, kept
+    for i in kept:
+        wanted.update(add[i])
+    # The relevant atoms numbered anew in the model's order (ties in h_max's queue go as
+    # over the whole model), so that each round's lists are as short as the goal's part.
+    local = {atom: n for n, atom in enumerate(sorted(wanted))}
+    cuts = Cuts([[local[a] for a in pre[i]] for i in kept],
+                [[local[a] for a in add[i]] for i in kept], len(local))
+    start = [ids[a] for a in state if a in ids]
+    cuts.unnumbered = len(start)
+    start = [local[a] for a in start if a in local]
+    cuts.unnumbered -= len(start)
+    return cuts, start, [local[g] for g in goals], kept

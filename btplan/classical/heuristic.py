@@ -80,6 +80,10 @@ class RelaxedModel:
         self._atoms = list(ids)
         self._add_ids = [tuple(dict.fromkeys(ids[a] for a in act.add)) for act in self.actions]
         self._action_cost = [float(act.cost) for act in self.actions]
+        self._uniform = len(set(self._action_cost)) <= 1
+        self._adders: dict[int, list[int]] | None = None
+        self._whole = all(c.is_integer() and c >= 0 for c in self._action_cost)
+        self._visits: int | None = None
         self._integral = all(c.is_integer() and 0 <= c < 2 ** 40 for c in self._action_cost)
         self._pre_ids: list[tuple[int, ...]] | None = None
         self._by_pre_id: list[list[int]] = [[] for _ in ids]
@@ -95,9 +99,32 @@ class RelaxedModel:
             self._pre_ids = [tuple([ids[a] for a in pre]) for pre in self._pre]
         return ids, self._pre_ids, self._add_ids
 
+    def adders(self) -> dict[int, list[int]]:
+        """The numbers of the actions adding each atom, by the atom's number (bound.py:
+        its relevance sweep starts from the goals, once per planning call; the model
+        outlives the call, so the index is made once)."""
+        if self._adders is None:
+            self._adders = {}
+            for i, added in enumerate(self._add_ids):
+                for atom in added:
+                    self._adders.setdefault(atom, []).append(i)
+        return self._adders
+
     def uniform(self) -> bool:
         """Whether every action costs the same."""
-        return len(set(self._action_cost)) <= 1
+        return self._uniform
+
+    def whole_costs(self) -> bool:
+        """Whether every action's cost is a whole, non-negative number (bound.py's sums
+        are exact then)."""
+        return self._whole
+
+    def precondition_visits(self) -> int:
+        """The preconditions of all actions, an action without any counted once: what a
+        round of LM-cut over the whole model visits at most (bound.py's work limit)."""
+        if self._visits is None:
+            self._visits = sum(max(1, len(set(pre))) for pre in self._pre)
+        return self._visits
 
     def action_costs(self) -> list[float]:
         """Each action's cost, in the order of `actions` (and of `numbered`)."""

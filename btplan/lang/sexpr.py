@@ -103,18 +103,26 @@ def pddl_parser() -> Lark:
     return Lark.open_from_package("btplan.grammar", "pddl.lark", parser="lalr")
 
 
-TOKENS = re.compile(r"""
-    (?P<SKIP>[ \t\f\r\n]+|;[^\n]*)
-  | (?P<LPAR>\()
+SKIP = r"(?:[ \t\f\r\n]++|;[^\n]*+)*+"
+"""Whitespace and comments, as many as follow (possessive: never given back, so that
+no token is found inside a comment)."""
+
+TOKEN = re.compile(SKIP + r"""(?:
+    (?P<LPAR>\()
   | (?P<RPAR>\))
   | (?P<NAME>[A-Za-z][A-Za-z0-9_\-]*)
   | (?P<VARIABLE>\?[A-Za-z][A-Za-z0-9_\-]*)
   | (?P<KEYWORD>:[A-Za-z][A-Za-z0-9_\-]*)
   | (?P<NUMBER>[0-9]+(?:\.[0-9]+)?)
   | (?P<SYMBOL>[-=<>*/+]+)
-""", re.VERBOSE)
-"""The terminals of grammar/pddl.lark, whitespace and comments first; their first
-characters differ, so the first alternative that matches is lark's longest match."""
+)""", re.VERBOSE)
+"""One terminal of grammar/pddl.lark with the whitespace and comments before it: one
+match a token, where matching the skipped text on its own took as many again. The
+terminals' first characters differ, so the first alternative that matches is lark's
+longest match."""
+
+SKIPPED = re.compile(SKIP)
+"""What may follow the last token."""
 
 
 def read_items(text: str, path: str) -> list[Item]:
@@ -135,21 +143,19 @@ def _read_fast(text: str, source: Source) -> list[Item] | None:
     """The items of well-formed text; None for anything else (lark then says what)."""
     stack: list[tuple[list[Item], Where | None]] = [([], None)]
     line, line_start = 1, 0
-    position, end = 0, len(text)
-    match = TOKENS.match
-    while position < end:
-        found = match(text, position)
-        if found is None:
-            return None
+    position = 0
+    match = TOKEN.match
+    while (found := match(text, position)) is not None:
         kind = found.lastgroup
-        start, position = position, found.end()
-        column = start - line_start + 1
-        if kind == "SKIP":
-            breaks = text.count("\n", start, position)
+        start = found.start(kind)  # type: ignore[arg-type]  # a token matched: it has one
+        if start != position:
+            breaks = text.count("\n", position, start)
             if breaks:
                 line += breaks
-                line_start = text.rindex("\n", start, position) + 1
-        elif kind == "LPAR":
+                line_start = text.rindex("\n", position, start) + 1
+        position = found.end()
+        column = start - line_start + 1
+        if kind == "LPAR":
             stack.append(([], source.at(line, column)))
         elif kind == "RPAR":
             if len(stack) == 1:
@@ -158,10 +164,11 @@ def _read_fast(text: str, source: Source) -> list[Item] | None:
             assert opened is not None
             stack[-1][0].append(_new_tuple(Group, (tuple(children), opened)))
         else:
-            assert kind is not None
-            word = found.group()
+            word = text[start:position]
             stack[-1][0].append(_new_tuple(Word, (word if kind == "SYMBOL" else word.lower(),
                                                   kind, source.at(line, column))))
+    if SKIPPED.fullmatch(text, position) is None:
+        return None  # a character no token starts with
     return stack[0][0] if len(stack) == 1 else None
 
 

@@ -24,7 +24,7 @@ from btplan.model import (
     Task,
     matches,
 )
-from btplan.planner.candidates import StaticBindings, Way
+from btplan.planner.candidates import StaticBindings, Tables, Way
 from btplan.planner.expand import circular, non_circular
 from btplan.grounding import Objects, bindings
 from btplan.classical import RelaxedModel
@@ -122,6 +122,13 @@ class AchieverIndex:
         if action is None:
             action = made[(template.name, args)] = self.task.instantiate(template, args)
         return action
+
+    @property
+    def groundings(self) -> dict[tuple[str, tuple[str, ...]], GroundAction]:
+        """What `ground` made, by action name and arguments, kept for the task's problem
+        (reuse.py): a symbolic world grounding the actions it runs can share them, as the
+        next planning call's worlds then find them made."""
+        return self._shared.made
 
     def has_effect(self, condition: GroundLiteral) -> bool:
         """Whether any action template has an effect of this predicate and sign."""
@@ -250,16 +257,25 @@ class AchieverIndex:
         relaxed = self._shared.relaxed  # its groundings, when something built it already
         limit_bindings = self.options.max_bindings
         effects = self._by_effect.get((condition.atom.predicate, condition.positive), [])
-        for way in self.static.ways(condition, effects):
+        tables = None if relaxed is None else self._tables(relaxed)
+        for way in self.static.ways(condition, effects, self._shared.problem.partials):
             picked = None
             if relaxed is not None:
                 picked = self.static.pick(way, state, reachable, limit_bindings, relaxed.actions,
-                                          lambda action: _makes_true(action, condition))
+                                          lambda action: _makes_true(action, condition), tables)
             if picked is None:
                 picked = self._enumerate(way, condition, state, refine, reachable)
             for action in picked:
                 found.setdefault(id(action), action)
         return list(found.values())
+
+    def _tables(self, relaxed: RelaxedModel) -> Tables:
+        """The tables of `relaxed`'s groundings, kept with it for the next calls."""
+        grounded = self._grounded()
+        assert grounded.relaxed is relaxed
+        if grounded.tables is None:
+            grounded.tables = Tables(relaxed.actions, self.task.domain.changed_predicates)
+        return grounded.tables
 
     def _enumerate(
         self, way: Way, condition: GroundLiteral, state: frozenset[Atom], refine: Refiner | None,

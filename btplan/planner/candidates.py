@@ -70,6 +70,10 @@ class _Table:
         return index.get(tuple([partial[n] for n in names]), [])
 
 
+Partials = dict[GroundLiteral, list[tuple[ActionTemplate, int, dict[str, str]]]]
+"""Per condition, the effects (template, effect number) unifying with it, and how."""
+
+
 class Way:
     """One effect of one template unified with a condition: a way to make it hold."""
 
@@ -95,22 +99,31 @@ class StaticBindings:
         self.objects = objects
         self._changing = task.domain.changed_predicates
         self._static = self._static_part(task.initial_state)
-        self._tables: dict[str, _Table | None] = {}
-        self._by_name: dict[str, list[GroundAction]] | None = None
+        self._tables: Tables | None = None
         self._ways: dict[GroundLiteral, list[Way]] = {}
         self._state: frozenset[Atom] | None = None
         self._state_ok = False
 
     def ways(self, condition: GroundLiteral,
-             effects: Sequence[tuple[ActionTemplate, int, Literal]]) -> list[Way]:
-        """The effects that unify with `condition` (grounding.unify), worked out once."""
+             effects: Sequence[tuple[ActionTemplate, int, Literal]],
+             kept: Partials | None = None) -> list[Way]:
+        """The effects that unify with `condition` (grounding.unify), worked out once.
+
+        `kept`: the unifications of earlier tasks with the same objects and types, for
+        the same `effects` of each condition (the domain's index), by condition: they
+        depend on nothing else, and a planning call on a kept domain finds them."""
         found = self._ways.get(condition)
         if found is None:
-            found = self._ways[condition] = []
-            for template, number, effect in effects:
-                partial = unify(self.task, template, effect, condition.atom, self.objects)
-                if partial is not None:
-                    found.append(Way(template, number, partial))
+            partials = None if kept is None else kept.get(condition)
+            if partials is None:
+                partials = []
+                for template, number, effect in effects:
+                    partial = unify(self.task, template, effect, condition.atom, self.objects)
+                    if partial is not None:
+                        partials.append((template, number, partial))
+                if kept is not None:
+                    kept[condition] = partials
+            found = self._ways[condition] = [Way(*made) for made in partials]
         return found
 
     def _static_part(self, state: frozenset[Atom]) -> frozenset[Atom]:
@@ -139,13 +152,19 @@ class StaticBindings:
     def pick(
         self, way: Way, state: frozenset[Atom], reachable: Container[Atom] | None, limit: int,
         grounded: Sequence[GroundAction], makes_true: Callable[[GroundAction], bool],
+        tables: Tables | None = None,
     ) -> list[GroundAction] | None:
         """The groundings that `bindings` would yield for `way` and that make its
         condition true, in no particular order; None when only `bindings` can tell (see
         the module docstring). `grounded` is the relaxed model's list of groundings, read
-        when a template is first tabled; `makes_true` is asked once per grounding."""
+        when a template is first tabled; `makes_true` is asked once per grounding.
+        `tables`: those kept with that relaxed model, if any (made here otherwise)."""
         if way.tabled is None:
-            self._prepare(way, grounded, makes_true)
+            if tables is None:
+                if self._tables is None:
+                    self._tables = Tables(grounded, self._changing)
+                tables = self._tables
+            self._prepare(way, tables, makes_true)
         if not way.tabled or not self._usable(state):
             return None  # whether it is tabled does not depend on the state: asked first
         found: list[GroundAction] = []
@@ -164,19 +183,39 @@ class StaticBindings:
                 found.append(entry.action)
         return found
 
-    def _prepare(self, way: Way, grounded: Sequence[GroundAction],
+    def _prepare(self, way: Way, tables: Tables,
                  makes_true: Callable[[GroundAction], bool]) -> None:
         known = self.task.object_types
-        name = way.template.name
-        if name not in self._tables:
-            self._tables[name] = self._build(way.template, grounded)
-        table = self._tables[name]
+        table = tables.table(way.template)
         way.tabled = table is not None and all(v in known for v in way.partial.values())
         if table is not None and way.tabled:
             way.entries = table.matching(way.number, way.partial)
             way.makes = [makes_true(entry.action) for entry in way.entries]
 
-    def _build(self, template: ActionTemplate, grounded: Sequence[GroundAction]) -> _Table | None:
+
+class Tables:
+    """Each template's statically allowed groundings, from one list of groundings.
+
+    A table depends on nothing but its template, the predicates the domain changes and
+    the list; the list is a relaxed model's, which is kept for later planning calls on
+    the domain (reuse.py), and so are these tables with it: a RoboWaiter goal's call
+    built its tables anew, a sixth of its time. Made on first use, template by template.
+    """
+
+    def __init__(self, grounded: Sequence[GroundAction], changing: Container[str]) -> None:
+        self._grounded = grounded
+        self._changing = changing
+        self._tables: dict[str, _Table | None] = {}
+        self._by_name: dict[str, list[GroundAction]] | None = None
+
+    def table(self, template: ActionTemplate) -> _Table | None:
+        """The template's table; None when it is not tabled (see the module docstring)."""
+        name = template.name
+        if name not in self._tables:
+            self._tables[name] = self._build(template)
+        return self._tables[name]
+
+    def _build(self, template: ActionTemplate) -> _Table | None:
         if any(p.refined for p in template.parameters):
             return None  # the world answers for refined values, in the state it is in
         if template.cost_term is not None or template.cost == math.inf:
@@ -186,7 +225,7 @@ class StaticBindings:
                  if c.predicate != EQUALITY and c.predicate in changing]
         if self._by_name is None:
             self._by_name = {}
-            for action in grounded:
+            for action in self._grounded:
                 self._by_name.setdefault(action.name, []).append(action)
         mine = self._by_name.get(template.name, [])
         if len(mine) > TABLE_LIMIT:

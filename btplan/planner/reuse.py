@@ -30,6 +30,7 @@ if TYPE_CHECKING:
     from typing import TypeVar
 
     from btplan.classical import PackedActions
+    from btplan.planner.candidates import Partials, Tables
 
     K = TypeVar("K", bound=Hashable)
     V = TypeVar("V")
@@ -49,6 +50,8 @@ class Grounded:
         self.relaxed: RelaxedModel | None = None
         self.packed: PackedActions | None = None
         self.packed_bytes: int | None = None
+        self.tables: Tables | None = None
+        """The relaxed model's groundings tabled per template (candidates.py)."""
         self._mutexes: OrderedDict[frozenset[Atom], Mutexes] = OrderedDict()
 
     def mutexes(self, initial: frozenset[Atom], actions: Callable[[], Sequence[GroundAction]],
@@ -64,6 +67,8 @@ class Problem:
         self.made: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
         """The grounded actions, by template name and arguments."""
         self._grounded: OrderedDict[Hashable, Grounded] = OrderedDict()
+        self.partials: Partials = {}
+        """How each condition unifies with the effects of the domain's index (candidates.py)."""
 
     def grounded(self, task: Task, reach: bool) -> Grounded:
         """The relaxed model's place for `task`, grounded by reachability or not."""

@@ -13,7 +13,8 @@ import pytest
 from btplan.acting.offline import load, plan
 from btplan.model import Task
 from btplan.planner import AchieverIndex
-from btplan.classical.bound import Cuts, fewest_steps, no_better_plan
+from btplan.classical.bound import (WORK, Cuts, _cheapest_step, _numbered, fewest_steps,
+                                    no_better_plan)
 from btplan.classical.improvement import improve
 from btplan.classical.neighbourhood import Limits, PlanSpace
 from tests.planner.test_classic import validate
@@ -230,3 +231,24 @@ def test_the_goals_relevant_actions_bound_as_the_whole_model(name: str) -> None:
     assert no_better_plan(*args, steps, float(cost))
     assert not no_better_plan(*args, steps + 1, float(cost))
     assert not no_better_plan(*args, steps, float(cost + 1))
+
+
+@pytest.mark.parametrize("name", ["p000", "p001", "p002", "p003"])
+def test_a_step_of_the_cheapest_achiever_is_answered_as_the_rounds_answer(name: str) -> None:
+    """A plan of one step as cheap as the cheapest achiever of a false goal is proven
+    best without LM-cut's rounds, as the rounds prove it; a unit cheaper, it is not."""
+    task = load(str(RW / "domain.pddl"), str(RW / f"{name}.pddl"))
+    relaxed = AchieverIndex(task).relaxed
+    start, goal = task.initial_state, task.goal_literals
+    ids, adders, costs = relaxed.numbered()[0], relaxed.adders(), relaxed.action_costs()
+    false = [ids[g.atom] for g in goal if g.positive and g.atom not in start]
+    cheapest = max(min(costs[i] for i in adders[at]) for at in false)
+    assert _cheapest_step(relaxed, start, goal, cheapest, WORK)
+    assert not _cheapest_step(relaxed, start, goal, cheapest + 1, WORK)
+    found = _numbered(relaxed, start, goal)
+    assert found is not None
+    cuts, numbers, goals, kept = found
+    assert cuts.bound(numbers, goals, int(cheapest), WORK, [int(costs[i]) for i in kept]) >= cheapest
+    assert cuts.bound(numbers, goals, 1, WORK) >= 1
+    assert no_better_plan(relaxed, start, goal, 1, cheapest)
+    assert not _cheapest_step(relaxed, start, goal, cheapest, 10)  # the rounds' work too

@@ -112,7 +112,7 @@ def attempt(
     choices the loop blames. `plan`, a plan for the whole goal, goes behind the goal
     tree before the first tick.
     """
-    groundings: dict[LeafKey, GroundAction] = {}
+    groundings = run.models.groundings  # the same `instantiate`, kept with the domain
     world = SymbolicWorld(run.task, seed=run.seed, groundings=groundings)
     loop = BlendedLoop(run.task, world, opts, like=run.models, banned=banned,
                        deadline=run.deadline)
