@@ -65,7 +65,8 @@ class _Shared:
         self.search: SubgoalSearch | None = None
         self.packed_asked = False
         self.static: StaticBindings | None = None
-        self.profiles: dict[int, _Profile] = {}
+        self.profiles: Profiles | None = None
+        """Those kept with the mutexes they judge by (reuse.py), once asked for."""
 
 
 class AchieverIndex:
@@ -290,6 +291,13 @@ class AchieverIndex:
                                         reachable=reachable)]
         return [a for a in made if _makes_true(a, condition)]
 
+    def _profiles(self) -> Profiles:
+        """The profiles of the task's groundings (`_Profile`), kept with its mutexes."""
+        shared = self._shared
+        if shared.profiles is None:
+            shared.profiles = self._grounded().profiles(self.task.initial_state)
+        return shared.profiles
+
     def _impossible(self, action: GroundAction) -> bool:
         """Whether two preconditions of `action` exclude each other (h^2): it never runs.
 
@@ -315,7 +323,7 @@ class AchieverIndex:
         heuristic = self.options.heuristic
         cost: dict[Atom, float] | None = None
         inf = math.inf
-        profiles = self._shared.profiles  # `_profile`, written out: it runs per candidate
+        profiles = self._profiles()  # `_profile`, written out: it runs per candidate
         known = self.task.object_types
         scored: list[tuple[tuple[float, int, str], GroundAction]] = []
         for action in candidates:
@@ -350,7 +358,7 @@ class AchieverIndex:
     def _profile(self, action: GroundAction) -> _Profile:
         """Kept by identity: `ground` makes one action per key, and the profile keeps
         its action alive, so that the identity is not reused."""
-        profiles = self._shared.profiles
+        profiles = self._profiles()
         profile = profiles.get(id(action))
         if profile is None or profile.action is not action:
             profile = profiles[id(action)] = _Profile(action, self.task.object_types)
@@ -375,6 +383,10 @@ class _Profile:
         has = known.__contains__
         self.unknown = frozenset([atom for atom in self.positive
                                   if not all(map(has, atom.args))])
+
+
+Profiles = dict[int, _Profile]
+"""Profiles by the identity of their action (`AchieverIndex._profile`)."""
 
 
 def _score(scored: tuple[tuple[float, int, str], GroundAction]) -> tuple[float, int, str]:

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from collections import OrderedDict
 from collections.abc import Callable, Hashable, Sequence
+from typing import Any
 
 from btplan.model import ActionTemplate, Atom, Domain, GroundAction, Literal, Task
 from btplan.classical import RelaxedModel
@@ -53,11 +54,19 @@ class Grounded:
         self.tables: Tables | None = None
         """The relaxed model's groundings tabled per template (candidates.py)."""
         self._mutexes: OrderedDict[frozenset[Atom], Mutexes] = OrderedDict()
+        self._profiles: OrderedDict[frozenset[Atom], dict[int, Any]] = OrderedDict()
 
     def mutexes(self, initial: frozenset[Atom], actions: Callable[[], Sequence[GroundAction]],
                 domain: Domain) -> Mutexes:
         """The mutexes from `initial`, over `actions` (asked for when first needed)."""
         return _kept(self._mutexes, initial, lambda: Mutexes(actions, initial, domain))
+
+    def profiles(self, initial: frozenset[Atom]) -> dict[int, Any]:
+        """What ranking reads from each achiever (achievers.py's profiles, by the
+        identity of their action), for the problem's groundings and the mutexes from
+        `initial`: the same whichever run asks, so that each run does not take its
+        achievers apart again. Typed loosely: this module sits beneath achievers.py."""
+        return _kept(self._profiles, initial, dict)
 
 
 class Problem:
