@@ -22,7 +22,7 @@ from collections import OrderedDict
 from collections.abc import Callable, Hashable, Sequence
 from typing import Any
 
-from btplan.model import ActionTemplate, Atom, Domain, GroundAction, Literal, Task
+from btplan.model import ActionTemplate, Atom, Domain, GroundAction, GroundLiteral, Literal, Task
 from btplan.classical import RelaxedModel
 from btplan.classical import Mutexes
 
@@ -31,7 +31,7 @@ if TYPE_CHECKING:
     from typing import TypeVar
 
     from btplan.classical import PackedActions
-    from btplan.planner.candidates import Partials, Tables
+    from btplan.planner.candidates import Partials, Tables, Way
 
     K = TypeVar("K", bound=Hashable)
     V = TypeVar("V")
@@ -53,6 +53,8 @@ class Grounded:
         self.packed_bytes: int | None = None
         self.tables: Tables | None = None
         """The relaxed model's groundings tabled per template (candidates.py)."""
+        self.ways: dict[GroundLiteral, list[Way]] = {}
+        """Per condition, its ways, each with what `tables` answered for it (candidates.py)."""
         self._mutexes: OrderedDict[frozenset[Atom], Mutexes] = OrderedDict()
         self._profiles: OrderedDict[frozenset[Atom], dict[int, Any]] = OrderedDict()
 
