@@ -262,8 +262,11 @@ class AchieverIndex:
         relaxed = self._shared.relaxed  # its groundings, when something built it already
         limit_bindings = self.options.max_bindings
         effects = self._by_effect.get((condition.atom.predicate, condition.positive), [])
-        tables = None if relaxed is None else self._tables(relaxed)
-        for way in self.static.ways(condition, effects, self._shared.problem.partials):
+        tables = store = None
+        if relaxed is not None:
+            tables = self._tables(relaxed)
+            store = self._grounded().ways  # prepared against those tables: kept with them
+        for way in self.static.ways(condition, effects, self._shared.problem.partials, store):
             picked = None
             if relaxed is not None:
                 picked = self.static.pick(way, state, reachable, limit_bindings, relaxed.actions,
