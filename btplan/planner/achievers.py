@@ -65,7 +65,8 @@ class _Shared:
         self.search: SubgoalSearch | None = None
         self.packed_asked = False
         self.static: StaticBindings | None = None
-        self.profiles: dict[int, _Profile] = {}
+        self.profiles: Profiles | None = None
+        """Those kept with the mutexes they judge by (reuse.py), once asked for."""
 
 
 class AchieverIndex:
@@ -241,8 +242,12 @@ class AchieverIndex:
             return left, bool(ranked) and not left
         kept: list[GroundAction] = []
         dropped: list[GroundAction] = []
+        disjoint = pursued.isdisjoint if isinstance(pursued, (set, frozenset)) else None
         for action in self._found(condition, state, refine):
-            (dropped if circular(action, pursued) else kept).append(action)
+            # `circular`, in C when `pursued` is a set (expand.pursued gives one)
+            needs_pursued = (not disjoint(action.preconditions) if disjoint is not None
+                             else circular(action, pursued))
+            (dropped if needs_pursued else kept).append(action)
         drop = self.options.mutexes
         ranked = self._best(kept, state, ALL, drop)
         if ranked or not dropped:
@@ -257,8 +262,11 @@ class AchieverIndex:
         relaxed = self._shared.relaxed  # its groundings, when something built it already
         limit_bindings = self.options.max_bindings
         effects = self._by_effect.get((condition.atom.predicate, condition.positive), [])
-        tables = None if relaxed is None else self._tables(relaxed)
-        for way in self.static.ways(condition, effects, self._shared.problem.partials):
+        tables = store = None
+        if relaxed is not None:
+            tables = self._tables(relaxed)
+            store = self._grounded().ways  # prepared against those tables: kept with them
+        for way in self.static.ways(condition, effects, self._shared.problem.partials, store):
             picked = None
             if relaxed is not None:
                 picked = self.static.pick(way, state, reachable, limit_bindings, relaxed.actions,
@@ -290,6 +298,13 @@ class AchieverIndex:
                                         reachable=reachable)]
         return [a for a in made if _makes_true(a, condition)]
 
+    def _profiles(self) -> Profiles:
+        """The profiles of the task's groundings (`_Profile`), kept with its mutexes."""
+        shared = self._shared
+        if shared.profiles is None:
+            shared.profiles = self._grounded().profiles(self.task.initial_state)
+        return shared.profiles
+
     def _impossible(self, action: GroundAction) -> bool:
         """Whether two preconditions of `action` exclude each other (h^2): it never runs.
 
@@ -315,7 +330,7 @@ class AchieverIndex:
         heuristic = self.options.heuristic
         cost: dict[Atom, float] | None = None
         inf = math.inf
-        profiles = self._shared.profiles  # `_profile`, written out: it runs per candidate
+        profiles = self._profiles()  # `_profile`, written out: it runs per candidate
         known = self.task.object_types
         scored: list[tuple[tuple[float, int, str], GroundAction]] = []
         for action in candidates:
@@ -350,7 +365,7 @@ class AchieverIndex:
     def _profile(self, action: GroundAction) -> _Profile:
         """Kept by identity: `ground` makes one action per key, and the profile keeps
         its action alive, so that the identity is not reused."""
-        profiles = self._shared.profiles
+        profiles = self._profiles()
         profile = profiles.get(id(action))
         if profile is None or profile.action is not action:
             profile = profiles[id(action)] = _Profile(action, self.task.object_types)
@@ -375,6 +390,10 @@ class _Profile:
         has = known.__contains__
         self.unknown = frozenset([atom for atom in self.positive
                                   if not all(map(has, atom.args))])
+
+
+Profiles = dict[int, _Profile]
+"""Profiles by the identity of their action (`AchieverIndex._profile`)."""
 
 
 def _score(scored: tuple[tuple[float, int, str], GroundAction]) -> tuple[float, int, str]:

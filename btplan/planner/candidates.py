@@ -106,13 +106,17 @@ class StaticBindings:
 
     def ways(self, condition: GroundLiteral,
              effects: Sequence[tuple[ActionTemplate, int, Literal]],
-             kept: Partials | None = None) -> list[Way]:
+             kept: Partials | None = None,
+             store: dict[GroundLiteral, list[Way]] | None = None) -> list[Way]:
         """The effects that unify with `condition` (grounding.unify), worked out once.
 
         `kept`: the unifications of earlier tasks with the same objects and types, for
         the same `effects` of each condition (the domain's index), by condition: they
-        depend on nothing else, and a planning call on a kept domain finds them."""
-        found = self._ways.get(condition)
+        depend on nothing else, and a planning call on a kept domain finds them.
+        `store`: where the ways are kept instead of here, with the tables `pick` reads
+        them from (a way, once asked, holds what its table answered)."""
+        ways = self._ways if store is None else store
+        found = ways.get(condition)
         if found is None:
             partials = None if kept is None else kept.get(condition)
             if partials is None:
@@ -123,7 +127,7 @@ class StaticBindings:
                         partials.append((template, number, partial))
                 if kept is not None:
                     kept[condition] = partials
-            found = self._ways[condition] = [Way(*made) for made in partials]
+            found = ways[condition] = [Way(*made) for made in partials]
         return found
 
     def _static_part(self, state: frozenset[Atom]) -> frozenset[Atom]:

@@ -36,16 +36,39 @@ def action_node(action: GroundAction) -> Action:
 
 
 def literal_of(node: Node) -> GroundLiteral | None:
-    """The literal a condition node checks, or None for any other node."""
+    """The literal a condition node checks, or None for any other node.
+
+    Planning reads conditions back as literals thousands of times a run (conflict
+    checks read every earlier sibling's): each is made once per leaf key and sign,
+    and found again by the key the leaf already holds."""
     if type(node) is Condition:
-        return _literal(node.ident, node.args, True)
+        found = _POSITIVE.get(node.key)
+        return found if found is not None else _made(node, True)
     if type(node) is Inverter:
         children = node.children
         if children:
             child = children[0]
             if type(child) is Condition:
-                return _literal(child.ident, child.args, False)
+                found = _NEGATIVE.get(child.key)
+                return found if found is not None else _made(child, False)
     return None
+
+
+LITERALS = 1 << 16
+"""Literals kept per sign (`literal_of`) before the table starts afresh: enough for any
+tree, bounded for a process that plans in many problems."""
+
+_POSITIVE: dict[tuple[str, tuple[str, ...]], GroundLiteral] = {}
+_NEGATIVE: dict[tuple[str, tuple[str, ...]], GroundLiteral] = {}
+
+
+def _made(leaf: Condition, positive: bool) -> GroundLiteral:
+    """The literal of `leaf` with that sign, made and kept for `literal_of`."""
+    table = _POSITIVE if positive else _NEGATIVE
+    if len(table) >= LITERALS:
+        table.clear()
+    literal = table[leaf.key] = _literal(leaf.ident, leaf.args, positive)
+    return literal
 
 
 def _literal(predicate: str, args: tuple[str, ...], positive: bool) -> GroundLiteral:

@@ -20,8 +20,9 @@ from __future__ import annotations
 
 from collections import OrderedDict
 from collections.abc import Callable, Hashable, Sequence
+from typing import Any
 
-from btplan.model import ActionTemplate, Atom, Domain, GroundAction, Literal, Task
+from btplan.model import ActionTemplate, Atom, Domain, GroundAction, GroundLiteral, Literal, Task
 from btplan.classical import RelaxedModel
 from btplan.classical import Mutexes
 
@@ -30,7 +31,7 @@ if TYPE_CHECKING:
     from typing import TypeVar
 
     from btplan.classical import PackedActions
-    from btplan.planner.candidates import Partials, Tables
+    from btplan.planner.candidates import Partials, Tables, Way
 
     K = TypeVar("K", bound=Hashable)
     V = TypeVar("V")
@@ -52,12 +53,22 @@ class Grounded:
         self.packed_bytes: int | None = None
         self.tables: Tables | None = None
         """The relaxed model's groundings tabled per template (candidates.py)."""
+        self.ways: dict[GroundLiteral, list[Way]] = {}
+        """Per condition, its ways, each with what `tables` answered for it (candidates.py)."""
         self._mutexes: OrderedDict[frozenset[Atom], Mutexes] = OrderedDict()
+        self._profiles: OrderedDict[frozenset[Atom], dict[int, Any]] = OrderedDict()
 
     def mutexes(self, initial: frozenset[Atom], actions: Callable[[], Sequence[GroundAction]],
                 domain: Domain) -> Mutexes:
         """The mutexes from `initial`, over `actions` (asked for when first needed)."""
         return _kept(self._mutexes, initial, lambda: Mutexes(actions, initial, domain))
+
+    def profiles(self, initial: frozenset[Atom]) -> dict[int, Any]:
+        """What ranking reads from each achiever (achievers.py's profiles, by the
+        identity of their action), for the problem's groundings and the mutexes from
+        `initial`: the same whichever run asks, so that each run does not take its
+        achievers apart again. Typed loosely: this module sits beneath achievers.py."""
+        return _kept(self._profiles, initial, dict)
 
 
 class Problem:
