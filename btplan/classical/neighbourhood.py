@@ -38,6 +38,10 @@ zenotravel, transport, visit-all and barman, 50,000 states each)."""
 EDGES_PER_STATE = 16
 """Edges kept, on average, per state of the budget (8 bytes each, as arrays)."""
 
+SMALL_STATES = 4096
+"""States numbered by a dict, at most, before the table takes over: the dict costs about
+85 bytes a state, 350 kB at this size, and numbers a child several times faster."""
+
 CHECK_EVERY = 256
 """States generated between two looks at the clock."""
 
@@ -202,41 +206,87 @@ class Neighbourhood:
         self.limits = limits
         self.max_states = limits.max_states
         self.states: list[int] = []
-        self._slots = array("i", bytes(4 * 1024))
+        self._index: dict[int, int] | None = {}
+        """States to numbers while the neighbourhood is small (SMALL_STATES): a child is
+        looked up by one C call, map(dict.get), where the table below costs a Python
+        loop per child; then the table takes over (`_leave_index`)."""
+        self._slots = array("i")
         """Open addressing by the hash of a state's bytes: its number + 1 (0: free), a
         state found by comparing it with `states` (a dict of states to numbers took 85
         bytes a state, these 8 to 16)."""
-        self._mask = 1023
+        self._mask = 0
         self._size = (len(space.packed.atoms) + 7) // 8
         self.first = array("l", [0])
         """Where each expanded state's edges start in `actions` and `targets` (and,
         last, where the next one's will): state n's are first[n] to first[n + 1]."""
         self.actions = array("i")
         self.targets = array("i")
-        self.frontier = [-1 - self._number(state) for state in dict.fromkeys(trajectory)]
+        self.frontier = self._number_children(list(dict.fromkeys(trajectory)), [])
         self.depth = 0
         self.full = False
         """The state budget ran out: the neighbourhood cannot grow any more."""
         self._ticks = 0
 
-    def _number(self, state: int) -> int:
-        """The state's number, a new one (minus one) if it is new."""
-        states, slots, mask = self.states, self._slots, self._mask
-        slot = hash(state.to_bytes(self._size)) & mask
-        while True:
-            held = slots[slot]
-            if not held:
-                slots[slot] = len(states) + 1
-                states.append(state)
-                if 2 * len(states) > mask:
-                    self._grow_slots()
-                return -len(states)
-            if states[held - 1] == state:
-                return held - 1
-            slot = (slot + 1) & mask
+    def _number_children(self, children: list[int], layer: list[int]) -> list[int]:
+        """The children's numbers, in order; the new ones numbered as they come and
+        added to `layer` too (a child met twice is new once)."""
+        index = self._index
+        if index is None:
+            return self._number_in_table(children, layer)
+        numbers = list(map(index.get, children))
+        if None in numbers:
+            states = self.states
+            for k, number in enumerate(numbers):
+                if number is None:
+                    child = children[k]
+                    number = index.get(child)
+                    if number is None:  # new, unless a sibling just was
+                        number = index[child] = len(states)
+                        states.append(child)
+                        layer.append(number)
+                    numbers[k] = number
+            if len(states) > SMALL_STATES:
+                self._leave_index()
+        return numbers  # type: ignore[return-value]  # no None is left
 
-    def _grow_slots(self) -> None:
-        self._mask = mask = 2 * self._mask + 1
+    def _leave_index(self) -> None:
+        """Number states by the table from now on: the dict has grown to where it
+        costs more memory than its speed is worth."""
+        self._index = None
+        self._mask = 1023
+        while 2 * len(self.states) > self._mask:
+            self._mask = 2 * self._mask + 1
+        self._fill_slots()
+
+    def _number_in_table(self, children: list[int], layer: list[int]) -> list[int]:
+        """`_number_children` by open addressing, inline: one call per child cost a
+        third of the time of growing."""
+        states, slots, mask, size = self.states, self._slots, self._mask, self._size
+        numbers = []
+        for child in children:
+            slot = hash(child.to_bytes(size)) & mask
+            while True:
+                held = slots[slot]
+                if not held:
+                    number = len(states)
+                    slots[slot] = number + 1
+                    states.append(child)
+                    layer.append(number)
+                    if 2 * number + 2 > mask:
+                        self._mask = mask = 2 * mask + 1
+                        self._fill_slots()
+                        slots = self._slots
+                    break
+                if states[held - 1] == child:
+                    number = held - 1
+                    break
+                slot = (slot + 1) & mask
+            numbers.append(number)
+        return numbers
+
+    def _fill_slots(self) -> None:
+        """A table of `_mask` + 1 slots holding every state."""
+        mask = self._mask
         self._slots = slots = array("i", bytes(4 * (mask + 1)))
         size = self._size
         for number, state in enumerate(self.states, start=1):
@@ -258,24 +308,21 @@ class Neighbourhood:
     def grow(self) -> None:
         """Add the states one step further from the trajectory."""
         self.depth += 1
-        states, layer, number_of = self.states, [], self._number
-        first, targets = self.first, self.targets
+        states = self.states
+        layer: list[int] = []
+        first, targets, kept = self.first, self.targets, self.actions
+        number = self._number_children
         successors = self.space.generator.successors
-        for number in self.frontier:
+        max_states, max_edges = self.max_states, EDGES_PER_STATE * self.max_states
+        for state in self.frontier:
             self._tick()
-            actions, children = successors(states[number])
-            if len(states) + len(children) > self.max_states \
-                    or len(targets) > EDGES_PER_STATE * self.max_states:
+            actions, children = successors(states[state])
+            if len(states) + len(children) > max_states or len(targets) > max_edges:
                 self.full = True
                 self.frontier = []
                 return
-            for child in children:
-                known = number_of(child)
-                if known < 0:  # new
-                    known = -1 - known
-                    layer.append(known)
-                targets.append(known)
-            self.actions.extend(actions)
+            targets.extend(number(children, layer))
+            kept.extend(actions)
             first.append(len(targets))
         self.frontier = layer
 
