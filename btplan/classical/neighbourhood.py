@@ -15,7 +15,7 @@ from array import array
 from collections.abc import Callable, Sequence
 
 from btplan.model import Atom, GroundAction, GroundLiteral
-from btplan.classical.packed import PackedActions, bits
+from btplan.classical.packed import PackedActions
 from btplan.records import record
 
 MAX_STATES = 50_000
@@ -156,7 +156,7 @@ class Successors:
             for atom in pre:
                 shared[atom] += 1
         self.free: list[int] = []
-        self.table: list[dict[int, list[int]] | None] = [None] * len(packed.atoms)
+        grouped: list[dict[int, list[int]] | None] = [None] * len(packed.atoms)
         for i, pre in enumerate(packed.pre):
             if i in banned:
                 continue
@@ -164,29 +164,57 @@ class Successors:
                 self.free.append(i)
                 continue
             first, *rest = sorted(pre, key=lambda atom: (shared[atom], atom))
-            groups = self.table[first]
+            groups = grouped[first]
             if groups is None:
-                groups = self.table[first] = {}
+                groups = grouped[first] = {}
             groups.setdefault(rest[0] if rest else -1, []).append(i)
-        self.anchors = sum(1 << atom for atom, groups in enumerate(self.table) if groups)
+        self.table = {1 << atom: _runs(groups, packed) for atom, groups in enumerate(grouped)
+                      if groups}
+        """Each anchor's actions (by the anchor's bit), as `_runs` has them."""
+        self.anchors = sum(self.table)
         """The atoms some action hangs under: the only set bits a state is read by."""
+        self.keep = [~mask for mask in packed.del_mask]
+        """Each action's complement of its deletes, once, not once a child."""
 
     def successors(self, state: int) -> tuple[list[int], list[int]]:
-        """The actions that can run in `state`, and the states each leads to."""
+        """The actions that can run in `state`, and the states each leads to.
+
+        The same actions in the same order as testing group by group: anchors lowest
+        first, then each anchor's groups as `_runs` keeps them."""
         packed = self.packed
-        pre_mask, neg_mask, add_mask, del_mask = (packed.pre_mask, packed.neg_mask,
-                                                  packed.add_mask, packed.del_mask)
+        neg_mask, add_mask, keep, table = packed.neg_mask, packed.add_mask, self.keep, self.table
         actions = [i for i in self.free if not state & neg_mask[i]]
-        table = self.table
-        for first in bits(state & self.anchors):
-            groups = table[first]
-            assert groups is not None
-            for second, group in groups.items():
-                if second >= 0 and not state >> second & 1:
-                    continue
-                actions += [i for i in group
-                            if state & pre_mask[i] == pre_mask[i] and not state & neg_mask[i]]
-        return actions, [(state & ~del_mask[i]) | add_mask[i] for i in actions]
+        rest = state & self.anchors
+        while rest:
+            low = rest & -rest
+            rest ^= low
+            for second, run in table[low]:
+                if state & second == second:
+                    actions += [i for i, pre, neg in run if state & pre == pre and not state & neg]
+        return actions, [state & keep[i] | add_mask[i] for i in actions]
+
+
+def _runs(groups: dict[int, list[int]], packed: PackedActions
+          ) -> list[tuple[int, list[tuple[int, int, int]]]]:
+    """An anchor's groups (second precondition: actions, in the order they came), as
+    runs: (bit of the second precondition, or 0, and each action with its masks).
+
+    A group of one or two actions joins the run before it, untested: testing its
+    actions costs about what testing its second precondition would, and each run
+    tested costs a call (groups are one or two actions in logistics and RoboWaiter,
+    where this made finding successors about a third faster). The order of the
+    actions is kept: it is the order the children are numbered in."""
+    runs: list[tuple[int, list[tuple[int, int, int]]]] = []
+    for second, group in groups.items():
+        members = [(i, packed.pre_mask[i], packed.neg_mask[i]) for i in group]
+        if len(group) <= 2 or second < 0:
+            if runs and runs[-1][0] == 0:
+                runs[-1][1].extend(members)
+            else:
+                runs.append((0, members))
+        else:
+            runs.append((1 << second, members))
+    return runs
 
 
 class Neighbourhood:
