@@ -366,8 +366,9 @@ class Neighbourhood:
         return self._dijkstra(bound)
 
     def _breadth_first(self, steps: int) -> list[int] | None:
-        goal, states, first = self.space.goal, self.states, self.first
-        actions, targets, expanded = self.actions, self.targets, len(first) - 1
+        states, first, actions, targets = self.states, self.first, self.actions, self.targets
+        positive, negative = self.space.positive, self.space.negative  # the goal, inline
+        expanded = len(first) - 1
         parents = array("l", [-1]) * len(states)  # -1: not reached; the start is 0
         via = array("i", [0]) * len(states)
         layer, length = [0], 0
@@ -378,46 +379,57 @@ class Neighbourhood:
                 if number >= expanded:
                     continue
                 self._tick()
-                for edge in range(first[number], first[number + 1]):
-                    child = targets[edge]
+                start, end = first[number], first[number + 1]
+                for child, i in zip(targets[start:end], actions[start:end]):
                     if child and parents[child] < 0:
-                        parents[child], via[child] = number, actions[edge]
-                        if goal(states[child]):
+                        parents[child], via[child] = number, i
+                        state = states[child]
+                        if state & positive == positive and not state & negative:
                             return _path(parents, via, child)
                         following.append(child)
             layer = following
         return None
 
     def _dijkstra(self, bound: tuple[float, int]) -> list[int] | None:
-        goal, states, first, costs = self.space.goal, self.states, self.first, self.space.costs
+        """Dijkstra by (cost, steps), written out: a (cost, steps) tuple built and
+        compared per edge took a third of its time."""
+        states, first, costs = self.states, self.first, self.space.costs
+        positive, negative = self.space.positive, self.space.negative  # the goal, inline
         actions, targets, expanded = self.actions, self.targets, len(first) - 1
         count = len(states)
-        best_cost = array("d", [bound[0]]) * count  # what a child must beat: the bound first
-        best_steps = array("l", [bound[1]]) * count
+        bound_cost, bound_steps = bound
+        best_cost = array("d", [bound_cost]) * count  # what a child must beat: the bound first
+        best_steps = array("l", [bound_steps]) * count
         best_cost[0], best_steps[0] = 0.0, 0
         parents = array("l", [-1]) * count
         via = array("i", [0]) * count
         queue = [(0.0, 0, 0)]
         done = bytearray(count)
+        pop, push = heapq.heappop, heapq.heappush
         while queue:
-            cost, steps, number = heapq.heappop(queue)
+            cost, steps, number = pop(queue)
             if done[number]:
                 continue
             done[number] = 1
-            if (cost, steps) >= bound:
+            if cost > bound_cost or (cost == bound_cost and steps >= bound_steps):
                 return None
-            if goal(states[number]):
+            state = states[number]
+            if state & positive == positive and not state & negative:
                 return _path(parents, via, number)
             if number >= expanded:
                 continue
             self._tick()
-            for edge in range(first[number], first[number + 1]):
-                child, i = targets[edge], actions[edge]
-                key = (cost + costs[i], steps + 1)
-                if not done[child] and key < (best_cost[child], best_steps[child]):
-                    best_cost[child], best_steps[child] = key
+            steps += 1
+            start, end = first[number], first[number + 1]
+            for child, i in zip(targets[start:end], actions[start:end]):
+                if done[child]:
+                    continue
+                reached = cost + costs[i]
+                held = best_cost[child]
+                if reached < held or (reached == held and steps < best_steps[child]):
+                    best_cost[child], best_steps[child] = reached, steps
                     parents[child], via[child] = number, i
-                    heapq.heappush(queue, (key[0], key[1], child))
+                    push(queue, (reached, steps, child))
         return None
 
 
