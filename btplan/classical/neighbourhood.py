@@ -155,13 +155,14 @@ class Successors:
         for pre in packed.pre:
             for atom in pre:
                 shared[atom] += 1
-        self.free: list[int] = []
+        self.free: list[tuple[int, int, int]] = []
+        """The actions with no positive precondition, with their masks as in `_runs`."""
         grouped: list[dict[int, list[int]] | None] = [None] * len(packed.atoms)
         for i, pre in enumerate(packed.pre):
             if i in banned:
                 continue
             if not pre:
-                self.free.append(i)
+                self.free.append((i, 0, packed.neg_mask[i]))
                 continue
             first, *rest = sorted(pre, key=lambda atom: (shared[atom], atom))
             groups = grouped[first]
@@ -179,19 +180,22 @@ class Successors:
     def successors(self, state: int) -> tuple[list[int], list[int]]:
         """The actions that can run in `state`, and the states each leads to.
 
-        The same actions in the same order as testing group by group: anchors lowest
-        first, then each anchor's groups as `_runs` keeps them."""
-        packed = self.packed
-        neg_mask, add_mask, keep, table = packed.neg_mask, packed.add_mask, self.keep, self.table
-        actions = [i for i in self.free if not state & neg_mask[i]]
+        The same actions in the same order as testing group by group: the free ones,
+        then anchors lowest first, each anchor's groups as `_runs` keeps them. Their
+        runs are gathered, then tested at once: a comprehension per run cost a call
+        each, a quarter of the time of a state with one or two actions a run."""
+        candidates = self.free[:]
+        table = self.table
         rest = state & self.anchors
         while rest:
             low = rest & -rest
             rest ^= low
             for second, run in table[low]:
                 if state & second == second:
-                    actions += [i for i, pre, neg in run if state & pre == pre and not state & neg]
-        return actions, [state & keep[i] | add_mask[i] for i in actions]
+                    candidates += run
+        actions = [i for i, pre, neg in candidates if state & pre == pre and not state & neg]
+        keep, add = self.keep, self.packed.add_mask
+        return actions, [state & keep[i] | add[i] for i in actions]
 
 
 def _runs(groups: dict[int, list[int]], packed: PackedActions
