@@ -233,7 +233,8 @@ class Neighbourhood:
     neighbourhood of 50,000 states 25 MB.
     """
 
-    def __init__(self, space: PlanSpace, trajectory: list[int], limits: Limits) -> None:
+    def __init__(self, space: PlanSpace, trajectory: list[int], limits: Limits,
+                 previous: Neighbourhood | None = None) -> None:
         self.space = space
         self.limits = limits
         self.max_states = limits.max_states
@@ -258,6 +259,31 @@ class Neighbourhood:
         self.full = False
         """The state budget ran out: the neighbourhood cannot grow any more."""
         self._ticks = 0
+        self._previous = previous if previous is not None and previous.small else None
+        """The neighbourhood grown before this one, around the plan this one's trajectory
+        bettered, while both are small: the states it expanded are not expanded again
+        but read from its edges (most are, around a trajectory a few steps apart; on
+        logistics that was two expansions in five)."""
+        if previous is not None:
+            previous._previous = None  # no chain of them
+
+    @property
+    def small(self) -> bool:
+        """Whether the states are still numbered by a dict (SMALL_STATES at most)."""
+        return self._index is not None
+
+    def _successors(self, state: int) -> tuple[list[int], list[int]]:
+        """The actions that can run in `state` and the states they lead to: as the
+        previous neighbourhood found them, when it expanded `state`."""
+        previous = self._previous
+        if previous is not None:
+            assert previous._index is not None
+            number = previous._index.get(state)
+            if number is not None and number < len(previous.first) - 1:
+                start, end = previous.first[number], previous.first[number + 1]
+                return (previous.actions[start:end].tolist(),
+                        list(map(previous.states.__getitem__, previous.targets[start:end])))
+        return self.space.generator.successors(state)
 
     def _number_children(self, children: list[int], layer: list[int]) -> list[int]:
         """The children's numbers, in order; the new ones numbered as they come and
@@ -285,6 +311,7 @@ class Neighbourhood:
         """Number states by the table from now on: the dict has grown to where it
         costs more memory than its speed is worth."""
         self._index = None
+        self._previous = None  # what it holds is no longer small beside this one
         self._mask = 1023
         while 2 * len(self.states) > self._mask:
             self._mask = 2 * self._mask + 1
@@ -344,7 +371,7 @@ class Neighbourhood:
         layer: list[int] = []
         first, targets, kept = self.first, self.targets, self.actions
         number = self._number_children
-        successors = self.space.generator.successors
+        successors = self._successors if self._previous else self.space.generator.successors
         max_states, max_edges = self.max_states, EDGES_PER_STATE * self.max_states
         for state in self.frontier:
             self._tick()
