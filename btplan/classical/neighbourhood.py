@@ -423,7 +423,9 @@ class Neighbourhood:
 
     def _dijkstra(self, bound: tuple[float, int]) -> list[int] | None:
         """Dijkstra by (cost, steps), written out: a (cost, steps) tuple built and
-        compared per edge took a third of its time."""
+        compared per edge took a third of its time. A state not expanded that is not a
+        goal is never queued: it would be popped and dropped, and most states are such
+        (the last layer), so it is marked done when first met."""
         states, first, costs = self.states, self.first, self.space.costs
         positive, negative = self.space.positive, self.space.negative  # the goal, inline
         actions, targets, expanded = self.actions, self.targets, len(first) - 1
@@ -455,6 +457,11 @@ class Neighbourhood:
             for child, i in zip(targets[start:end], actions[start:end]):
                 if done[child]:
                     continue
+                if child >= expanded:  # a leaf: all it can be is a goal
+                    leaf = states[child]
+                    if not (leaf & positive == positive and not leaf & negative):
+                        done[child] = 1
+                        continue
                 reached = cost + costs[i]
                 held = best_cost[child]
                 if reached < held or (reached == held and steps < best_steps[child]):
