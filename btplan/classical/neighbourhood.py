@@ -410,10 +410,10 @@ class Neighbourhood:
                 if number >= expanded:
                     continue
                 self._tick()
-                start, end = first[number], first[number + 1]
-                for child, i in zip(targets[start:end], actions[start:end]):
+                for edge in range(first[number], first[number + 1]):
+                    child = targets[edge]
                     if child and parents[child] < 0:
-                        parents[child], via[child] = number, i
+                        parents[child], via[child] = number, actions[edge]
                         state = states[child]
                         if state & positive == positive and not state & negative:
                             return _path(parents, via, child)
