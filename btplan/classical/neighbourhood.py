@@ -155,21 +155,24 @@ class Successors:
         for pre in packed.pre:
             for atom in pre:
                 shared[atom] += 1
+        count = len(packed.atoms)
+        rank = [uses * count + atom for atom, uses in enumerate(shared)]  # least shared first
+        masks = list(zip(range(len(packed.pre)), packed.pre_mask, packed.neg_mask))
         self.free: list[tuple[int, int, int]] = []
         """The actions with no positive precondition, with their masks as in `_runs`."""
-        grouped: list[dict[int, list[int]] | None] = [None] * len(packed.atoms)
+        grouped: list[dict[int, list[int]] | None] = [None] * count
         for i, pre in enumerate(packed.pre):
             if i in banned:
                 continue
             if not pre:
-                self.free.append((i, 0, packed.neg_mask[i]))
+                self.free.append(masks[i])
                 continue
-            first, *rest = sorted(pre, key=lambda atom: (shared[atom], atom))
+            first, *rest = sorted(pre, key=rank.__getitem__)
             groups = grouped[first]
             if groups is None:
                 groups = grouped[first] = {}
             groups.setdefault(rest[0] if rest else -1, []).append(i)
-        self.table = {1 << atom: _runs(groups, packed) for atom, groups in enumerate(grouped)
+        self.table = {1 << atom: _runs(groups, masks) for atom, groups in enumerate(grouped)
                       if groups}
         """Each anchor's actions (by the anchor's bit), as `_runs` has them."""
         self.anchors = sum(self.table)
@@ -198,19 +201,20 @@ class Successors:
         return actions, [state & keep[i] | add[i] for i in actions]
 
 
-def _runs(groups: dict[int, list[int]], packed: PackedActions
+def _runs(groups: dict[int, list[int]], masks: list[tuple[int, int, int]]
           ) -> list[tuple[int, list[tuple[int, int, int]]]]:
     """An anchor's groups (second precondition: actions, in the order they came), as
-    runs: (bit of the second precondition, or 0, and each action with its masks).
+    runs: (bit of the second precondition, or 0, and each action with its masks:
+    `masks`, by action).
 
     A group of one or two actions joins the run before it, untested: testing its
     actions costs about what testing its second precondition would, and each run
-    tested costs a call (groups are one or two actions in logistics and RoboWaiter,
-    where this made finding successors about a third faster). The order of the
-    actions is kept: it is the order the children are numbered in."""
+    costs a turn of the loop (groups are one or two actions in logistics and
+    RoboWaiter). The order of the actions is kept: it is the order the children are
+    numbered in."""
     runs: list[tuple[int, list[tuple[int, int, int]]]] = []
     for second, group in groups.items():
-        members = [(i, packed.pre_mask[i], packed.neg_mask[i]) for i in group]
+        members = list(map(masks.__getitem__, group))
         if len(group) <= 2 or second < 0:
             if runs and runs[-1][0] == 0:
                 runs[-1][1].extend(members)
