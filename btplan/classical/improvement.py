@@ -149,8 +149,8 @@ def _search(space: PlanSpace, plan: list[int], result: Improvement, limits: Limi
     """Plan-neighbourhood search from `plan`: the best plan found within `limits`, or
     the first of `floor` steps."""
 
-    def around(plan: list[int]) -> Neighbourhood:
-        return Neighbourhood(space, space.trajectory(plan), limits)
+    def around(plan: list[int], previous: Neighbourhood | None = None) -> Neighbourhood:
+        return Neighbourhood(space, space.trajectory(plan), limits, previous)
 
     area, depth = around(plan), 1
     found_at = len(area.states)  # states of the neighbourhood that last improved the plan
@@ -166,7 +166,7 @@ def _search(space: PlanSpace, plan: list[int], result: Improvement, limits: Limi
                 plan, found_at = shorter, len(area.states)
                 if len(plan) <= floor:
                     return plan  # no plan has fewer steps
-                area = around(plan)  # then as far out around the new trajectory
+                area = around(plan, area)  # then as far out around the new trajectory
                 continue
             if area.closed or area.full or len(area.states) >= _patience(
                     len(plan), found_at, floor):

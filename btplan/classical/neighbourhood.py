@@ -15,7 +15,7 @@ from array import array
 from collections.abc import Callable, Sequence
 
 from btplan.model import Atom, GroundAction, GroundLiteral
-from btplan.classical.packed import PackedActions, bits
+from btplan.classical.packed import PackedActions
 from btplan.records import record
 
 MAX_STATES = 50_000
@@ -37,6 +37,10 @@ zenotravel, transport, visit-all and barman, 50,000 states each)."""
 
 EDGES_PER_STATE = 16
 """Edges kept, on average, per state of the budget (8 bytes each, as arrays)."""
+
+SMALL_STATES = 4096
+"""States numbered by a dict, at most, before the table takes over: the dict costs about
+85 bytes a state, 350 kB at this size, and numbers a child several times faster."""
 
 CHECK_EVERY = 256
 """States generated between two looks at the clock."""
@@ -151,38 +155,74 @@ class Successors:
         for pre in packed.pre:
             for atom in pre:
                 shared[atom] += 1
-        self.free: list[int] = []
-        self.table: list[dict[int, list[int]] | None] = [None] * len(packed.atoms)
+        count = len(packed.atoms)
+        rank = [uses * count + atom for atom, uses in enumerate(shared)]  # least shared first
+        masks = list(zip(range(len(packed.pre)), packed.pre_mask, packed.neg_mask))
+        self.free: list[tuple[int, int, int]] = []
+        """The actions with no positive precondition, with their masks as in `_runs`."""
+        grouped: list[dict[int, list[int]] | None] = [None] * count
         for i, pre in enumerate(packed.pre):
             if i in banned:
                 continue
             if not pre:
-                self.free.append(i)
+                self.free.append(masks[i])
                 continue
-            first, *rest = sorted(pre, key=lambda atom: (shared[atom], atom))
-            groups = self.table[first]
+            first, *rest = sorted(pre, key=rank.__getitem__)
+            groups = grouped[first]
             if groups is None:
-                groups = self.table[first] = {}
+                groups = grouped[first] = {}
             groups.setdefault(rest[0] if rest else -1, []).append(i)
-        self.anchors = sum(1 << atom for atom, groups in enumerate(self.table) if groups)
+        self.table = {1 << atom: _runs(groups, masks) for atom, groups in enumerate(grouped)
+                      if groups}
+        """Each anchor's actions (by the anchor's bit), as `_runs` has them."""
+        self.anchors = sum(self.table)
         """The atoms some action hangs under: the only set bits a state is read by."""
+        self.keep = [~mask for mask in packed.del_mask]
+        """Each action's complement of its deletes, once, not once a child."""
 
     def successors(self, state: int) -> tuple[list[int], list[int]]:
-        """The actions that can run in `state`, and the states each leads to."""
-        packed = self.packed
-        pre_mask, neg_mask, add_mask, del_mask = (packed.pre_mask, packed.neg_mask,
-                                                  packed.add_mask, packed.del_mask)
-        actions = [i for i in self.free if not state & neg_mask[i]]
+        """The actions that can run in `state`, and the states each leads to.
+
+        The same actions in the same order as testing group by group: the free ones,
+        then anchors lowest first, each anchor's groups as `_runs` keeps them. Their
+        runs are gathered, then tested at once: a comprehension per run cost a call
+        each, a quarter of the time of a state with one or two actions a run."""
+        candidates = self.free[:]
         table = self.table
-        for first in bits(state & self.anchors):
-            groups = table[first]
-            assert groups is not None
-            for second, group in groups.items():
-                if second >= 0 and not state >> second & 1:
-                    continue
-                actions += [i for i in group
-                            if state & pre_mask[i] == pre_mask[i] and not state & neg_mask[i]]
-        return actions, [(state & ~del_mask[i]) | add_mask[i] for i in actions]
+        rest = state & self.anchors
+        while rest:
+            low = rest & -rest
+            rest ^= low
+            for second, run in table[low]:
+                if state & second == second:
+                    candidates += run
+        actions = [i for i, pre, neg in candidates if state & pre == pre and not state & neg]
+        keep, add = self.keep, self.packed.add_mask
+        return actions, [state & keep[i] | add[i] for i in actions]
+
+
+def _runs(groups: dict[int, list[int]], masks: list[tuple[int, int, int]]
+          ) -> list[tuple[int, list[tuple[int, int, int]]]]:
+    """An anchor's groups (second precondition: actions, in the order they came), as
+    runs: (bit of the second precondition, or 0, and each action with its masks:
+    `masks`, by action).
+
+    A group of one or two actions joins the run before it, untested: testing its
+    actions costs about what testing its second precondition would, and each run
+    costs a turn of the loop (groups are one or two actions in logistics and
+    RoboWaiter). The order of the actions is kept: it is the order the children are
+    numbered in."""
+    runs: list[tuple[int, list[tuple[int, int, int]]]] = []
+    for second, group in groups.items():
+        members = list(map(masks.__getitem__, group))
+        if len(group) <= 2 or second < 0:
+            if runs and runs[-1][0] == 0:
+                runs[-1][1].extend(members)
+            else:
+                runs.append((0, members))
+        else:
+            runs.append((1 << second, members))
+    return runs
 
 
 class Neighbourhood:
@@ -197,46 +237,119 @@ class Neighbourhood:
     neighbourhood of 50,000 states 25 MB.
     """
 
-    def __init__(self, space: PlanSpace, trajectory: list[int], limits: Limits) -> None:
+    def __init__(self, space: PlanSpace, trajectory: list[int], limits: Limits,
+                 previous: Neighbourhood | None = None) -> None:
         self.space = space
         self.limits = limits
         self.max_states = limits.max_states
         self.states: list[int] = []
-        self._slots = array("i", bytes(4 * 1024))
+        self._index: dict[int, int] | None = {}
+        """States to numbers while the neighbourhood is small (SMALL_STATES): a child is
+        looked up by one C call, map(dict.get), where the table below costs a Python
+        loop per child; then the table takes over (`_leave_index`)."""
+        self._slots = array("i")
         """Open addressing by the hash of a state's bytes: its number + 1 (0: free), a
         state found by comparing it with `states` (a dict of states to numbers took 85
         bytes a state, these 8 to 16)."""
-        self._mask = 1023
+        self._mask = 0
         self._size = (len(space.packed.atoms) + 7) // 8
         self.first = array("l", [0])
         """Where each expanded state's edges start in `actions` and `targets` (and,
         last, where the next one's will): state n's are first[n] to first[n + 1]."""
         self.actions = array("i")
         self.targets = array("i")
-        self.frontier = [-1 - self._number(state) for state in dict.fromkeys(trajectory)]
+        self.frontier = self._number_children(list(dict.fromkeys(trajectory)), [])
         self.depth = 0
         self.full = False
         """The state budget ran out: the neighbourhood cannot grow any more."""
         self._ticks = 0
+        self._previous = previous if previous is not None and previous.small else None
+        """The neighbourhood grown before this one, around the plan this one's trajectory
+        bettered, while both are small: the states it expanded are not expanded again
+        but read from its edges (most are, around a trajectory a few steps apart; on
+        logistics that was two expansions in five)."""
+        if previous is not None:
+            previous._previous = None  # no chain of them
 
-    def _number(self, state: int) -> int:
-        """The state's number, a new one (minus one) if it is new."""
-        states, slots, mask = self.states, self._slots, self._mask
-        slot = hash(state.to_bytes(self._size)) & mask
-        while True:
-            held = slots[slot]
-            if not held:
-                slots[slot] = len(states) + 1
-                states.append(state)
-                if 2 * len(states) > mask:
-                    self._grow_slots()
-                return -len(states)
-            if states[held - 1] == state:
-                return held - 1
-            slot = (slot + 1) & mask
+    @property
+    def small(self) -> bool:
+        """Whether the states are still numbered by a dict (SMALL_STATES at most)."""
+        return self._index is not None
 
-    def _grow_slots(self) -> None:
-        self._mask = mask = 2 * self._mask + 1
+    def _successors(self, state: int) -> tuple[list[int], list[int]]:
+        """The actions that can run in `state` and the states they lead to: as the
+        previous neighbourhood found them, when it expanded `state`."""
+        previous = self._previous
+        if previous is not None:
+            assert previous._index is not None
+            number = previous._index.get(state)
+            if number is not None and number < len(previous.first) - 1:
+                start, end = previous.first[number], previous.first[number + 1]
+                return (previous.actions[start:end].tolist(),
+                        list(map(previous.states.__getitem__, previous.targets[start:end])))
+        return self.space.generator.successors(state)
+
+    def _number_children(self, children: list[int], layer: list[int]) -> list[int]:
+        """The children's numbers, in order; the new ones numbered as they come and
+        added to `layer` too (a child met twice is new once)."""
+        index = self._index
+        if index is None:
+            return self._number_in_table(children, layer)
+        numbers = list(map(index.get, children))
+        if None in numbers:
+            states = self.states
+            for k, number in enumerate(numbers):
+                if number is None:
+                    child = children[k]
+                    number = index.get(child)
+                    if number is None:  # new, unless a sibling just was
+                        number = index[child] = len(states)
+                        states.append(child)
+                        layer.append(number)
+                    numbers[k] = number
+            if len(states) > SMALL_STATES:
+                self._leave_index()
+        return numbers  # type: ignore[return-value]  # no None is left
+
+    def _leave_index(self) -> None:
+        """Number states by the table from now on: the dict has grown to where it
+        costs more memory than its speed is worth."""
+        self._index = None
+        self._previous = None  # what it holds is no longer small beside this one
+        self._mask = 1023
+        while 2 * len(self.states) > self._mask:
+            self._mask = 2 * self._mask + 1
+        self._fill_slots()
+
+    def _number_in_table(self, children: list[int], layer: list[int]) -> list[int]:
+        """`_number_children` by open addressing, inline: one call per child cost a
+        third of the time of growing."""
+        states, slots, mask, size = self.states, self._slots, self._mask, self._size
+        numbers = []
+        for child in children:
+            slot = hash(child.to_bytes(size)) & mask
+            while True:
+                held = slots[slot]
+                if not held:
+                    number = len(states)
+                    slots[slot] = number + 1
+                    states.append(child)
+                    layer.append(number)
+                    if 2 * number + 2 > mask:
+                        self._mask = mask = 2 * mask + 1
+                        self._fill_slots()
+                        slots = self._slots
+                    break
+                if states[held - 1] == child:
+                    number = held - 1
+                    break
+                slot = (slot + 1) & mask
+            numbers.append(number)
+        return numbers
+
+    def _fill_slots(self) -> None:
+        """A table of `_mask` + 1 slots holding every state."""
+        mask = self._mask
         self._slots = slots = array("i", bytes(4 * (mask + 1)))
         size = self._size
         for number, state in enumerate(self.states, start=1):
@@ -258,24 +371,21 @@ class Neighbourhood:
     def grow(self) -> None:
         """Add the states one step further from the trajectory."""
         self.depth += 1
-        states, layer, number_of = self.states, [], self._number
-        first, targets = self.first, self.targets
-        successors = self.space.generator.successors
-        for number in self.frontier:
+        states = self.states
+        layer: list[int] = []
+        first, targets, kept = self.first, self.targets, self.actions
+        number = self._number_children
+        successors = self._successors if self._previous else self.space.generator.successors
+        max_states, max_edges = self.max_states, EDGES_PER_STATE * self.max_states
+        for state in self.frontier:
             self._tick()
-            actions, children = successors(states[number])
-            if len(states) + len(children) > self.max_states \
-                    or len(targets) > EDGES_PER_STATE * self.max_states:
+            actions, children = successors(states[state])
+            if len(states) + len(children) > max_states or len(targets) > max_edges:
                 self.full = True
                 self.frontier = []
                 return
-            for child in children:
-                known = number_of(child)
-                if known < 0:  # new
-                    known = -1 - known
-                    layer.append(known)
-                targets.append(known)
-            self.actions.extend(actions)
+            targets.extend(number(children, layer))
+            kept.extend(actions)
             first.append(len(targets))
         self.frontier = layer
 
@@ -291,8 +401,9 @@ class Neighbourhood:
         return self._dijkstra(bound)
 
     def _breadth_first(self, steps: int) -> list[int] | None:
-        goal, states, first = self.space.goal, self.states, self.first
-        actions, targets, expanded = self.actions, self.targets, len(first) - 1
+        states, first, actions, targets = self.states, self.first, self.actions, self.targets
+        positive, negative = self.space.positive, self.space.negative  # the goal, inline
+        expanded = len(first) - 1
         parents = array("l", [-1]) * len(states)  # -1: not reached; the start is 0
         via = array("i", [0]) * len(states)
         layer, length = [0], 0
@@ -307,42 +418,60 @@ class Neighbourhood:
                     child = targets[edge]
                     if child and parents[child] < 0:
                         parents[child], via[child] = number, actions[edge]
-                        if goal(states[child]):
+                        state = states[child]
+                        if state & positive == positive and not state & negative:
                             return _path(parents, via, child)
                         following.append(child)
             layer = following
         return None
 
     def _dijkstra(self, bound: tuple[float, int]) -> list[int] | None:
-        goal, states, first, costs = self.space.goal, self.states, self.first, self.space.costs
+        """Dijkstra by (cost, steps), written out: a (cost, steps) tuple built and
+        compared per edge took a third of its time. A state not expanded that is not a
+        goal is never queued: it would be popped and dropped, and most states are such
+        (the last layer), so it is marked done when first met."""
+        states, first, costs = self.states, self.first, self.space.costs
+        positive, negative = self.space.positive, self.space.negative  # the goal, inline
         actions, targets, expanded = self.actions, self.targets, len(first) - 1
         count = len(states)
-        best_cost = array("d", [bound[0]]) * count  # what a child must beat: the bound first
-        best_steps = array("l", [bound[1]]) * count
+        bound_cost, bound_steps = bound
+        best_cost = array("d", [bound_cost]) * count  # what a child must beat: the bound first
+        best_steps = array("l", [bound_steps]) * count
         best_cost[0], best_steps[0] = 0.0, 0
         parents = array("l", [-1]) * count
         via = array("i", [0]) * count
         queue = [(0.0, 0, 0)]
         done = bytearray(count)
+        pop, push = heapq.heappop, heapq.heappush
         while queue:
-            cost, steps, number = heapq.heappop(queue)
+            cost, steps, number = pop(queue)
             if done[number]:
                 continue
             done[number] = 1
-            if (cost, steps) >= bound:
+            if cost > bound_cost or (cost == bound_cost and steps >= bound_steps):
                 return None
-            if goal(states[number]):
+            state = states[number]
+            if state & positive == positive and not state & negative:
                 return _path(parents, via, number)
             if number >= expanded:
                 continue
             self._tick()
-            for edge in range(first[number], first[number + 1]):
-                child, i = targets[edge], actions[edge]
-                key = (cost + costs[i], steps + 1)
-                if not done[child] and key < (best_cost[child], best_steps[child]):
-                    best_cost[child], best_steps[child] = key
+            steps += 1
+            start, end = first[number], first[number + 1]
+            for child, i in zip(targets[start:end], actions[start:end]):
+                if done[child]:
+                    continue
+                if child >= expanded:  # a leaf: all it can be is a goal
+                    leaf = states[child]
+                    if not (leaf & positive == positive and not leaf & negative):
+                        done[child] = 1
+                        continue
+                reached = cost + costs[i]
+                held = best_cost[child]
+                if reached < held or (reached == held and steps < best_steps[child]):
+                    best_cost[child], best_steps[child] = reached, steps
                     parents[child], via[child] = number, i
-                    heapq.heappush(queue, (key[0], key[1], child))
+                    push(queue, (reached, steps, child))
         return None
 
 
