@@ -20,7 +20,6 @@ from __future__ import annotations
 
 from collections import OrderedDict
 from collections.abc import Callable, Hashable, Sequence
-from typing import Any
 
 from btplan.model import ActionTemplate, Atom, Domain, GroundAction, GroundLiteral, Literal, Task
 from btplan.classical import RelaxedModel
@@ -28,7 +27,7 @@ from btplan.classical import Mutexes
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from typing import TypeVar
+    from typing import Any, TypeVar
 
     from btplan.classical import PackedActions
     from btplan.planner.candidates import Partials, Tables, Way
