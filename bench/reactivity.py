@@ -161,8 +161,9 @@ def _above_undisturbed(p: Point, base: Sequence[Point], keyed: dict[tuple[str, s
     if mine is None or not theirs:
         return ""
     best = min(theirs)
-    ratio = f"{best / mine:.1f}x" if mine > 0 else "(btplan: none)"
-    return f"{mine:.2f} vs {best:.2f} ({ratio})"
+    if mine < 0.01:  # within the noise of the two medians: reacting cost nothing measurable
+        return f"{mine:.2f} vs {best:.2f} (btplan: none)"
+    return f"{mine:.2f} vs {best:.2f} ({best / mine:.1f}x)"
 
 
 def explain_failures(rows: Sequence[Row], jobs: int = 1,
