@@ -296,19 +296,23 @@ class Neighbourhood:
         if index is None:
             return self._number_in_table(children, layer)
         numbers = list(map(index.get, children))
-        if None in numbers:
-            states = self.states
-            for k, number in enumerate(numbers):
-                if number is None:
-                    child = children[k]
-                    number = index.get(child)
-                    if number is None:  # new, unless a sibling just was
-                        number = index[child] = len(states)
-                        states.append(child)
-                        layer.append(number)
-                    numbers[k] = number
-            if len(states) > SMALL_STATES:
+        count = len(children)
+        numbers.append(None)  # so that index() finds one: the end
+        k = numbers.index(None)
+        if k < count:
+            states, add = self.states, index.setdefault
+            size = len(states)
+            while k < count:  # the children not known before this state, by index() in C
+                child = children[k]
+                number = numbers[k] = add(child, size)
+                if number == size:  # new, not a sibling met just before
+                    states.append(child)
+                    layer.append(number)
+                    size += 1
+                k = numbers.index(None, k + 1)
+            if size > SMALL_STATES:
                 self._leave_index()
+        numbers.pop()
         return numbers  # type: ignore[return-value]  # no None is left
 
     def _leave_index(self) -> None:
