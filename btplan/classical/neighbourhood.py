@@ -187,7 +187,9 @@ class Successors:
         then anchors lowest first, each anchor's groups as `_runs` keeps them. Their
         runs are gathered, then tested at once: a comprehension per run cost a call
         each, a quarter of the time of a state with one or two actions a run."""
-        candidates = self.free[:]
+        free = self.free  # no positive precondition: only the negative ones to test
+        actions = [i for i, _, neg in free if not state & neg] if free else []
+        candidates: list[tuple[int, int, int]] = []
         table = self.table
         rest = state & self.anchors
         while rest:
@@ -196,7 +198,7 @@ class Successors:
             for second, run in table[low]:
                 if state & second == second:
                     candidates += run
-        actions = [i for i, pre, neg in candidates if state & pre == pre and not state & neg]
+        actions += [i for i, pre, neg in candidates if state & pre == pre and not state & neg]
         keep, add = self.keep, self.packed.add_mask
         return actions, [state & keep[i] | add[i] for i in actions]
 
