@@ -187,7 +187,9 @@ class Successors:
         then anchors lowest first, each anchor's groups as `_runs` keeps them. Their
         runs are gathered, then tested at once: a comprehension per run cost a call
         each, a quarter of the time of a state with one or two actions a run."""
-        candidates = self.free[:]
+        free = self.free  # no positive precondition: only the negative ones to test
+        actions = [i for i, _, neg in free if not state & neg] if free else []
+        candidates: list[tuple[int, int, int]] = []
         table = self.table
         rest = state & self.anchors
         while rest:
@@ -196,7 +198,7 @@ class Successors:
             for second, run in table[low]:
                 if state & second == second:
                     candidates += run
-        actions = [i for i, pre, neg in candidates if state & pre == pre and not state & neg]
+        actions += [i for i, pre, neg in candidates if state & pre == pre and not state & neg]
         keep, add = self.keep, self.packed.add_mask
         return actions, [state & keep[i] | add[i] for i in actions]
 
@@ -296,19 +298,23 @@ class Neighbourhood:
         if index is None:
             return self._number_in_table(children, layer)
         numbers = list(map(index.get, children))
-        if None in numbers:
-            states = self.states
-            for k, number in enumerate(numbers):
-                if number is None:
-                    child = children[k]
-                    number = index.get(child)
-                    if number is None:  # new, unless a sibling just was
-                        number = index[child] = len(states)
-                        states.append(child)
-                        layer.append(number)
-                    numbers[k] = number
-            if len(states) > SMALL_STATES:
+        count = len(children)
+        numbers.append(None)  # so that index() finds one: the end
+        k = numbers.index(None)
+        if k < count:
+            states, add = self.states, index.setdefault
+            size = len(states)
+            while k < count:  # the children not known before this state, by index() in C
+                child = children[k]
+                number = numbers[k] = add(child, size)
+                if number == size:  # new, not a sibling met just before
+                    states.append(child)
+                    layer.append(number)
+                    size += 1
+                k = numbers.index(None, k + 1)
+            if size > SMALL_STATES:
                 self._leave_index()
+        numbers.pop()
         return numbers  # type: ignore[return-value]  # no None is left
 
     def _leave_index(self) -> None:
