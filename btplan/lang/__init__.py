@@ -21,11 +21,12 @@ if TYPE_CHECKING:
         load_domain,
         load_problem,
         parse_bt,
+        with_goal,
     )
     from btplan.lang.report import InputErrors
 
 _HOMES = {"BtFile": "loader", "Collection": "loader", "collect": "loader", "load": "loader",
-          "load_domain": "loader", "load_problem": "loader", "parse_bt": "loader",
+          "load_domain": "loader", "load_problem": "loader", "parse_bt": "loader", "with_goal": "loader",
           "InputErrors": "report"}
 
 
@@ -45,4 +46,5 @@ __all__ = [
     "load_domain",
     "load_problem",
     "parse_bt",
+    "with_goal",
 ]

@@ -14,12 +14,12 @@ from btplan.collector import building
 from btplan.errors import InputError, Span
 from btplan.io import STDIO, read_text
 from btplan.lang.names import check_unique, suggest
-from btplan.lang.problem_check import build_problem
+from btplan.lang.problem_check import build_problem, check_goal
 from btplan.lang.report import Report
 from btplan.lang.syntax import DomainSyntax, ProblemSyntax
 from btplan.lang.validate import build_domain
 from btplan.model import ROOT_TYPE, Domain, Problem, Task, TypedName
-from btplan.records import record
+from btplan.records import record, replace
 
 PDDL_SUFFIXES = (".pddl",)
 
@@ -239,6 +239,30 @@ def load_problem(domain: Domain, path: str, problem: str | None = None) -> Task:
     """
     with building():
         return _problem_of(domain, path, problem)
+
+
+def with_goal(task: Task, goal: str, source: str = "goal") -> Task:
+    """`task` with `goal`, one PDDL condition such as `(and (on a b) (not (clear c)))`,
+    as its goal: the same domain, objects and initial state.
+
+    A robot in one scene is given one goal after another; reading the scene once and
+    each goal alone spares reading and checking the objects and the initial facts again
+    (on BTPG's RoboWaiter goals, most of the problem's reading), and the goals' tasks
+    share the domain and the models planning keeps with it. The goal is checked as a
+    problem's goal is; `source` names it in error messages.
+
+        >>> from btplan import load
+        >>> task = with_goal(load("pick_place"), "(holding cube)")
+        >>> [str(goal) for goal in task.goal_literals]
+        ['holding(cube)']
+    """
+    from btplan.lang.pddl_reader import read_goal
+
+    with building():
+        report = Report()
+        literals = check_goal(read_goal(goal, source), task, report)
+        report.raise_errors([source])
+    return Task(domain=task.domain, problem=replace(task.problem, goal=literals))
 
 
 def _problem_of(domain: Domain, path: str, problem: str | None) -> Task:

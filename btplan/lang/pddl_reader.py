@@ -24,6 +24,7 @@ from btplan.lang.syntax import (
     ParameterSyntax,
     PredicateSyntax,
     ProblemSyntax,
+    Source,
     TypedSyntax,
 )
 from btplan.limits import shorten
@@ -319,6 +320,20 @@ def _atom(group: Group) -> LiteralSyntax:
 
 
 # --- problem ---------------------------------------------------------------------------
+
+
+def read_goal(text: str, path: str) -> tuple[LiteralSyntax, ...]:
+    """A goal written alone, as a problem's `:goal` condition: `(on a b)` or
+    `(and (on a b) (not (clear c)))`."""
+    items = read_items(text, path)
+    if not items:
+        raise Source(text, path).start().error("the goal is empty",
+                                               "write a condition such as '(on a b)'")
+    if len(items) > 1:
+        raise items[1].at.error("a goal is one condition", "join several with (and ...)")
+    goal = expect_group(items[0], "a condition in parentheses, such as '(on a b)'")
+    return _literals(goal, goal)
+
 
 
 def _problem(define: Group) -> ProblemSyntax:

@@ -19,7 +19,7 @@ from btplan.lang.validate import (
     typed_names,
     written,
 )
-from btplan.model import Domain, FunctionValue, Literal, Predicate, Problem
+from btplan.model import Domain, FunctionValue, Literal, Predicate, Problem, Task
 
 
 def build_problem(syntax: ProblemSyntax, domain: Domain, report: Report | None = None) -> Problem:
@@ -79,6 +79,17 @@ def build_problem(syntax: ProblemSyntax, domain: Domain, report: Report | None =
         goal=tuple(x for x in goal if x is not None),
         values=tuple(values),
     )
+
+
+def check_goal(goal: tuple[LiteralSyntax, ...], task: Task, report: Report) -> tuple[Literal, ...]:
+    """A goal given on its own, checked as a problem's goal is: against the domain's
+    predicates and the task's objects and constants, and for literals that contradict."""
+    known = dict(task.object_types)
+    facts = _FactChecker(TypeTable.from_domain(task.domain), task.domain.predicate_map, known,
+                         set())
+    checked = [report.attempt(facts.check, lit, "goal") for lit in goal]
+    report.attempt(check_contradictions, goal, "goal conditions", "no state satisfies both")
+    return tuple(x for x in checked if x is not None)
 
 
 def _warn_unreachable(

@@ -42,6 +42,9 @@ def test_btplan_half_alone_plans_checks_and_reports_two_goals(tmp_path: Path) ->
     assert [(r["planner"], r["index"], r["solved"]) for r in rows] == [
         ("btplan", "0", "True"), ("btplan", "1", "True")]
     assert all(float(r["plan_cost"]) > 0 and float(r["seconds"]) > 0 for r in rows)
+    assert all(float(r["goal_seconds"]) > 0 for r in rows)
+    assert any("the goal alone on the scene read once, then plan(): " in line
+               and "- ms" not in line for line in lines), run.stdout
 
 
 def test_the_target_compares_with_the_btpg_planner_of_lowest_median_time() -> None:
