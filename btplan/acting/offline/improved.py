@@ -59,7 +59,6 @@ PACKED_BYTES = 64 << 20
 neighbourhood search (an estimate: `packed_for`)."""
 
 
-
 def budget(started: float, now: float, deadline: float | None) -> float:
     """Seconds the improvement may take, planning having run from `started` to `now`."""
     seconds = max(MIN_SECONDS, PLANNING_SHARE * (now - started))
