@@ -29,7 +29,7 @@ _VALUED = {
     "--plan-out": "plan_out", "--trace-expansions": "trace_expansions", "--seed": "seed",
     "--max-expansions": "max_expansions", "--max-ticks": "max_ticks",
     "--max-alternatives": "max_alternatives", "--timeout": "timeout",
-    "--max-memory": "max_memory",
+    "--max-memory": "max_memory", "--goal": "goal",
 }
 _FLAGS = {"--paper": "paper", "--no-search": "no_search", "--no-improve": "no_improve",
           "-q": "quiet", "--quiet": "quiet"}

@@ -30,6 +30,7 @@ EXAMPLES = """Examples:
   btplan plan domains/pick_place.bt -o tree.xml          # BehaviorTree.CPP v4 XML
   btplan plan domain.pddl problem.pddl -f dot | dot -Tsvg > tree.svg
   btplan plan domains/blocksworld.bt --plan-out sas_plan --timeout 60
+  btplan plan domain.pddl scene.pddl --goal '(and (on a b) (on b c))'
 """
 
 
@@ -90,6 +91,10 @@ def plan_command(
         "--max-memory", metavar="SIZE",
         help="Stop (exit 1) when the planner's memory would grow past SIZE (2G, 500M; 0: no "
              "limit); by default 80% of the machine's memory.")] = "auto",
+    goal: Annotated[str | None, typer.Option(
+        "--goal", metavar="CONDITION", show_default=False,
+        help="Plan this goal instead of the problem's, from the same objects and initial "
+             "state: one PDDL condition, such as '(and (on a b) (not (clear c)))'.")] = None,
 ) -> None:
     """Build a reactive BT for the problem by planning and acting in the symbolic world.
 
@@ -99,7 +104,7 @@ def plan_command(
     plan_and_write(domain, problem, fmt.value if fmt is not None else None,
                    out_alias if out_alias is not None else out, plan_out, trace_expansions,
                    seed, max_expansions, max_ticks, max_alternatives, paper, no_search,
-                   timeout, quiet, no_improve, max_memory)
+                   timeout, quiet, no_improve, max_memory, goal=goal)
 
 
 __all__ = ["DEFAULT_TIMEOUT", "Format", "Progress", "default_format", "plan_command",

@@ -40,9 +40,10 @@ def plan_and_write(domain: str, problem: str | None = None, fmt: str | None = No
                    max_alternatives: int | None = None, paper: bool = False,
                    no_search: bool = False, timeout: float = DEFAULT_TIMEOUT,
                    quiet: bool = False, no_improve: bool = False, max_memory: str = "auto",
-                   started: float | None = None) -> None:
+                   started: float | None = None, goal: str | None = None) -> None:
     """The command `btplan plan`, its arguments read and typed (see its --help);
-    `started`: the time.monotonic() the time limit counts from (default: now)."""
+    `started`: the time.monotonic() the time limit counts from (default: now); `goal`:
+    a goal to plan instead of the problem's (`btplan.lang.with_goal`)."""
     from btplan.cli.resources import MemoryLimit, describe, parse_memory
 
     limit = parse_memory(max_memory)
@@ -51,7 +52,7 @@ def plan_and_write(domain: str, problem: str | None = None, fmt: str | None = No
             _plan_and_write(domain, problem, fmt, out, plan_out, trace_expansions, seed,
                             max_expansions, max_ticks, max_alternatives, paper, no_search,
                             timeout, quiet, no_improve,
-                            time.monotonic() if started is None else started)
+                            time.monotonic() if started is None else started, goal)
     except MemoryError:
         what = f"the memory limit ({describe(limit)}, --max-memory)" if limit else "memory"
         raise PlanningError(f"{what} ran out while planning; nothing written") from None
@@ -61,7 +62,7 @@ def _plan_and_write(domain: str, problem: str | None, fmt: str | None, out: str,
                     plan_out: str | None, trace_expansions: str | None, seed: int,
                     max_expansions: int, max_ticks: int, max_alternatives: int | None,
                     paper: bool, no_search: bool, timeout: float, quiet: bool,
-                    no_improve: bool, started: float) -> None:
+                    no_improve: bool, started: float, goal: str | None) -> None:
     # Imported here, not at the top: the typer app imports this module to build the
     # command line, and the planner, the trees and their formats serve only this command.
     from btplan.acting.offline import load, plan
@@ -101,6 +102,10 @@ def _plan_and_write(domain: str, problem: str | None, fmt: str | None, out: str,
         try:
             with interrupted.reading():
                 task = load(resolve(domain), *([problem] if problem is not None else []))
+                if goal is not None:
+                    from btplan.lang import with_goal
+
+                    task = with_goal(task, goal, source="--goal")
             limit.phase = "planning"
             left = (max(0.001, started + timeout - time.monotonic()) if timeout else None)
             with collecting():

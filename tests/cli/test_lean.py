@@ -50,6 +50,8 @@ VECTORS = [
     ["plan", "-q", "d.pddl", "--format=xml", "p.pddl", "--seed", "3", "--timeout=2.5"],
     ["plan", "d.pddl", "p.pddl", "--out", "t.json", "-o", "u.json", "--paper", "--no-search"],
     ["plan", "d.pddl", "p.pddl", "--no-improve", "--plan-out", "plan.txt"],
+    ["plan", "d.pddl", "p.pddl", "--goal", "(and (on b1 b3) (clear b1))", "--plan-out", "-"],
+    ["plan", "d.pddl", "p.pddl", "--goal=(on b1 b4)"],
     ["plan", "d.pddl", "p.pddl", "--max-expansions", "0"],
     ["plan", "d.pddl", "p.pddl", "--max-alternatives", "1", "--max-ticks", "3"],
     ["plan", "missing.pddl", "p.pddl"],
@@ -85,7 +87,7 @@ def test_anything_else_is_left_to_typer(args: list[str]) -> None:
 
 def test_the_vectors_above_take_both_paths() -> None:
     lean = [read_plan_arguments(argv[1:]) is not None for argv in VECTORS]
-    assert lean == [True] * 10 + [False] * 4
+    assert lean == [True] * 12 + [False] * 4
 
 
 def test_plain_numbers_are_what_the_patterns_accept() -> None:

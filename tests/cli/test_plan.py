@@ -284,3 +284,15 @@ def test_a_memory_limit_stops_planning_with_exit_1_instead_of_the_oom_killer(
     assert done.returncode == 1, done.stderr
     assert "the memory limit (150 MB, --max-memory) ran out while planning" in done.stderr
     assert "Traceback" not in done.stderr and not out.exists()
+
+
+def test_a_goal_given_on_the_command_line_is_planned_instead_of_the_problems(
+        tmp_path: Path) -> None:
+    plan = tmp_path / "sas_plan"
+    result = runner.invoke(app, ["plan", PICK, "--goal", "(and (holding cube))", "-o",
+                                 str(tmp_path / "tree.json"), "--plan-out", str(plan)])
+    assert result.exit_code == 0, result.output
+    assert plan.read_text().splitlines()[:2] == ["(moveto cube tau_cube)", "(pick cube)"]
+    refused = runner.invoke(app, ["plan", PICK, "--goal", "(holding cub)"])
+    assert refused.exit_code == 2
+    assert "--goal:1:10: unknown object 'cub' in a goal" in refused.stderr
