@@ -147,6 +147,10 @@ def run(
         help="Write the run as a Groot2 replay file (BehaviorTree.CPP's FileLogger2 "
              "format), put together when the run ends, however it ends.",
         show_default=False)] = None,
+    goal: Annotated[str | None, typer.Option(
+        "--goal", metavar="CONDITION", show_default=False,
+        help="Act toward this goal instead of the problem's, from the same objects and "
+             "initial state: one PDDL condition, such as '(and (on a b) (clear c))'.")] = None,
 ) -> None:
     """Run Algorithm 1 online: tick the tree, expand it when it fails, let agents disturb it.
 
@@ -185,6 +189,10 @@ def run(
                           *([world_spec.rpartition(":")[0]] if world_spec else []),
                           *([ros] if ros else [])])
     task = acting.load(resolve(domain), *([problem] if problem is not None else []))
+    if goal is not None:
+        from btplan.lang import with_goal
+
+        task = with_goal(task, goal, source="--goal")
     specs = [parse_spec(text, Span("--disturb", 1, 1)) for text in disturb or []]
     scene: str | None = None
     if scenario is not None:

@@ -268,3 +268,14 @@ def test_a_tick_that_does_not_end_is_cut_by_the_time_budget(
     result = runner.invoke(app, ["run", PICK_PLACE, "-q", "--timeout", "0.2"])
     assert result.exit_code == 1, result.output
     assert "the time budget (0.2 s) ran out in the middle of a tick" in result.output
+
+
+def test_a_run_acts_toward_a_goal_given_on_the_command_line(tmp_path: Path) -> None:
+    plan = tmp_path / "plan.txt"
+    result = runner.invoke(app, ["run", str(DOMAINS / "pick_place.bt"), "--goal",
+                                 "(holding cube)", "--plan-out", str(plan), "-q"])
+    assert result.exit_code == 0, result.output
+    assert plan.read_text().splitlines()[:2] == ["(moveto cube tau_cube)", "(pick cube)"]
+    refused = runner.invoke(app, ["run", str(DOMAINS / "pick_place.bt"), "--goal", "(holding)"])
+    assert refused.exit_code == 2
+    assert "--goal:1:2: holding takes 1 argument, got 0" in refused.stderr
