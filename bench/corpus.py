@@ -246,7 +246,7 @@ def compile_btplan() -> None:
 
     package = Path(btplan.__file__).parent
     compileall.compile_dir(str(package), quiet=1)
-    print(f"btplan's bytecode compiled first ({package}), as pip compiles an installed "
+    print(f"btplan's bytecode compiled first ({package.name}/), as pip compiles an installed "
           "package: no btplan process compiles its sources while timed", flush=True)
 
 
