@@ -24,18 +24,17 @@ from btplan.model import Task
 from btplan.sweep.scenarios import resolve
 from btplan.worlds.symbolic import SymbolicWorld
 
+from reactivity import CASES  # the scenarios the sweep runs, and their problems
+
 ROOT = Path(__file__).resolve().parents[1]
-FILES = {"obstacle": "domains/pick_place_obstacle.bt",
-         "towers": "bench/problems/blocksworld_6.bt",
-         "packages": "bench/problems/logistics_1.bt"}
-"""The scenarios of bench/reactivity.py and the problems it sweeps them on."""
+FILES = {case.scenario: case.files for case in CASES}
 
 
 def runs(scenario: str, rate: float, seeds: int, config: ActingConfig
          ) -> list[tuple[bool, int, int, float]]:
     """(reached, ticks, planner calls, planning CPU seconds) of each seed's run."""
     chosen = resolve(scenario)
-    task: Task = chosen.prepare(btplan.load(str(ROOT / FILES[scenario])))
+    task: Task = chosen.prepare(btplan.load(*(str(ROOT / f) for f in FILES[scenario])))
     out = []
     for seed in range(seeds):
         outcome = btplan.run(task, world=SymbolicWorld(task, seed=seed),
