@@ -90,6 +90,10 @@ class ActingConfig:
       alternative at every tick.
     - `stop_on_skill_error`: an exception inside a skill ends the run (SkillError)
       instead of counting as that action's FAILURE.
+    - `stuck_wait`: seconds a run paced on a wall clock (a rate) goes on ticking when
+      the loop cannot grow the tree any further, before it counts as stuck: sensors
+      read at different moments can show an action's effects in halves, and the dead
+      end is gone at the next reading (btplan.acting.stuck_wait). 0: stuck at once.
     - `halt_wait`: seconds to wait, on every way out of a run, for halted skills that
       report when they have stopped.
     """
@@ -108,6 +112,7 @@ class ActingConfig:
     leave_plan_once_departed: bool = True
     wait_for_alternatives: bool = True
     stop_on_skill_error: bool = False
+    stuck_wait: float = 1.0
     halt_wait: float = 2.0
 
     @classmethod
@@ -119,7 +124,7 @@ class ActingConfig:
                            credit_other_goals=False, finish_halted_action=False,
                            retry_failed_actions=False, plan_offline_when_stuck=False,
                            plan_before_acting=False, leave_plan_once_departed=False,
-                           wait_for_alternatives=False),
+                           wait_for_alternatives=False, stuck_wait=0.0),
                        **changes)
 
     @classmethod

@@ -26,7 +26,9 @@ from btplan.acting.offline_turns import OfflineTurns
 from btplan.acting.pacing import Pacer, Stop
 from btplan.acting.recorder import Recorder, TickView
 from btplan.acting.records import RunSummary, TickRecord
-from btplan.bt import SUCCESS, BehaviorTree
+from btplan.acting.state import TickReport
+from btplan.acting.stuck_wait import StuckWait
+from btplan.bt import FAILURE, SUCCESS, BehaviorTree
 from btplan.errors import PlanningError, SkillError
 from btplan.model import GroundAction, Task
 from btplan.planner import AchieverIndex, PlannerOptions
@@ -163,7 +165,8 @@ def run_task(
     try:
         with _terminate_cleanly():
             try:
-                reached, reason = _drive(loop, pacer, recorder, max_ticks, keep, offline)
+                stuck = StuckWait(config.stuck_wait, pacer.clock if pacer.period else None)
+                reached, reason = _drive(loop, pacer, recorder, max_ticks, keep, offline, stuck)
             except Stop:
                 reason, interrupted = "interrupted", True
                 if keep and recorder.goal_held:  # a kept run stopped with the goal holding
@@ -193,8 +196,11 @@ def run_task(
 
 
 def _drive(loop: BlendedLoop, pacer: Pacer, recorder: Recorder, max_ticks: int | None,
-           keep: bool, offline: OfflineTurns) -> tuple[bool, str]:
+           keep: bool, offline: OfflineTurns, stuck: StuckWait) -> tuple[bool, str]:
     """Tick until the goal is reached (with `keep`, on until the limit), or the limit.
+
+    When the loop gets stuck, a paced run ticks on for a while first (`stuck`); then
+    the tree planned offline from the facts of now takes over, if any.
 
     The goal is checked in the world after the tick: when actions finish within the
     tick they start in, later work may undo a goal checked earlier in the same tick,
@@ -210,11 +216,15 @@ def _drive(loop: BlendedLoop, pacer: Pacer, recorder: Recorder, max_ticks: int |
             report = loop.tick()
             if ahead is not None:
                 report.follows(ahead)
-        except PlanningError:
-            taken = offline.take_over(loop)
-            if taken is None:
-                raise
-            report = taken  # the loop acts on the tree planned offline from the next tick
+            stuck.after(report.status)
+        except PlanningError as error:
+            if stuck.holds(error):
+                report = TickReport(loop.ticks, FAILURE)  # the dead end may pass: wait
+            else:
+                taken = offline.take_over(loop)
+                if taken is None:
+                    raise
+                report = taken  # the loop acts on the tree planned offline from the next tick
         ticks += 1
         now = report.status is SUCCESS and loop.goal_holds()
         goal = "reached" if now and not held else "lost" if held and not now else ""

@@ -56,8 +56,19 @@ class TreeTopics:
 
     def close(self) -> None:
         """Let the subscribers that have matched get what was published (up to
-        CLOSE_WAIT seconds) before the robot's node goes."""
+        CLOSE_WAIT seconds) before the robot's node goes.
+
+        Discovery matches each topic on its own: a monitor that joined late may hear
+        the statuses already and not yet be matched on the tree, which it gets, kept,
+        only once it is. So the tree waits for as many subscribers as the statuses have
+        (up to CLOSE_WAIT), then each waits for its acknowledgements (as long again)."""
+        import time
+
         from rclpy.duration import Duration
 
+        until = time.monotonic() + CLOSE_WAIT
+        while (self.tree.get_subscription_count() < self.statuses.get_subscription_count()
+               and time.monotonic() < until):
+            time.sleep(0.01)
         for publisher in (self.tree, self.statuses):
             publisher.wait_for_all_acked(Duration(seconds=CLOSE_WAIT))
