@@ -116,6 +116,10 @@ class BlendedLoop:
         self.index = AchieverIndex(task, self.options, like)
         self.tree = initial_tree(task, self._goal_order())
         self.expansions: list[Expansion] = []
+        self.started_before_expansion = 0
+        """Skills started in the world of the latest expansion before it was made: none, and
+        the tree it left behaves from that world's start as it did (offline planning's
+        rounds, btplan.acting.offline.attempt)."""
         self.ticks = 0
         self.expanded: set[Node] = set()
         self.dead: set[Node] = set()
@@ -413,6 +417,7 @@ class BlendedLoop:
                               moves)
         self._tally[literal] += 1
         self.expansions.append(expansion)
+        self.started_before_expansion = self.skills.starts
         return expansion
 
     def ground(self, actions: Iterable[GroundAction]) -> None:

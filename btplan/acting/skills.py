@@ -85,6 +85,11 @@ class Skills:
         refine = getattr(world, "refine", None) if self.capabilities.refines else None
         self._refine = refine if refine is not None else fallback_refine
 
+    @property
+    def starts(self) -> int:
+        """Skills started so far in this world."""
+        return self._starts
+
     # --- the tree's side ----------------------------------------------------------------
 
     def begin_tick(self) -> None:

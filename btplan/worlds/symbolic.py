@@ -162,6 +162,12 @@ class SymbolicWorld:
         if self._remaining.pop(key, None) is not None:
             self.halted.append(self.ground(key))
 
+    @property
+    def drew(self) -> bool:
+        """Whether an outcome was left to chance yet: until then, the same tree run from
+        the same state does the same again."""
+        return self._rng is not None
+
     def _draw(self) -> float:
         """The next number of the seeded generator, made on first use: worlds without
         failure probabilities (all of offline planning) never import `random`."""
