@@ -18,8 +18,9 @@ from btplan import records
 from btplan.model import Domain, Literal, Task, TypeDef
 
 
-def both(**options: Any) -> tuple[type[Any], type[Any]]:
-    """The same class body as a dataclass and as a record."""
+def both(warm: bool = False, **options: Any) -> tuple[type[Any], type[Any]]:
+    """The same class body as a dataclass and as a record; `warm`: the record class has
+    made enough records to have an `__init__` of its own (records.HOT)."""
     made = []
     for decorate, field in ((dataclasses.dataclass, dataclasses.field),
                             (records.record, records.field)):
@@ -32,6 +33,10 @@ def both(**options: Any) -> tuple[type[Any], type[Any]]:
                 return self.x + self.y
 
         made.append(decorate(**options)(Point))
+    if warm:
+        for _ in range(records.HOT):
+            made[1](x=0)
+        assert made[1].__init__ is not records._init
     return made[0], made[1]
 
 
@@ -39,9 +44,10 @@ OPTIONS = [{}, {"frozen": True}, {"frozen": True, "slots": True}, {"kw_only": Tr
            {"frozen": True, "kw_only": True}, {"slots": True}]
 
 
+@pytest.mark.parametrize("warm", [False, True])
 @pytest.mark.parametrize("options", OPTIONS)
-def test_construction_repr_and_equality_agree(options: dict[str, Any]) -> None:
-    dc, rec = both(**options)
+def test_construction_repr_and_equality_agree(options: dict[str, Any], warm: bool) -> None:
+    dc, rec = both(warm, **options)
     for args, kwargs in (((), {"x": 1}), ((), {"x": 1, "y": 5, "tags": ["a"]})):
         a, b = dc(*args, **kwargs), rec(*args, **kwargs)
         assert repr(a) == repr(b)
@@ -54,9 +60,10 @@ def test_construction_repr_and_equality_agree(options: dict[str, Any]) -> None:
     assert rec.__match_args__ == dc.__match_args__
 
 
+@pytest.mark.parametrize("warm", [False, True])
 @pytest.mark.parametrize("options", OPTIONS)
-def test_bad_arguments_are_refused_alike(options: dict[str, Any]) -> None:
-    dc, rec = both(**options)
+def test_bad_arguments_are_refused_alike(options: dict[str, Any], warm: bool) -> None:
+    dc, rec = both(warm, **options)
     for args, kwargs in (((), {}), ((), {"x": 1, "z": 2}), ((1, 2, [], 4), {}),
                          ((1,), {"x": 1})):
         with pytest.raises(TypeError):
@@ -65,9 +72,10 @@ def test_bad_arguments_are_refused_alike(options: dict[str, Any]) -> None:
             rec(*args, **kwargs)
 
 
+@pytest.mark.parametrize("warm", [False, True])
 @pytest.mark.parametrize("options", OPTIONS)
-def test_hashing_and_immutability_agree(options: dict[str, Any]) -> None:
-    dc, rec = both(**options)
+def test_hashing_and_immutability_agree(options: dict[str, Any], warm: bool) -> None:
+    dc, rec = both(warm, **options)
     a, b = dc(x=1, tags=()), rec(x=1, tags=())
     assert (dc.__hash__ is None) == (rec.__hash__ is None)
     if options.get("frozen"):
@@ -82,9 +90,10 @@ def test_hashing_and_immutability_agree(options: dict[str, Any]) -> None:
     assert hasattr(b, "__dict__") == hasattr(a, "__dict__")
 
 
+@pytest.mark.parametrize("warm", [False, True])
 @pytest.mark.parametrize("options", OPTIONS)
-def test_copies_and_dataclass_functions_agree(options: dict[str, Any]) -> None:
-    dc, rec = both(**options)
+def test_copies_and_dataclass_functions_agree(options: dict[str, Any], warm: bool) -> None:
+    dc, rec = both(warm, **options)
     a, b = dc(x=1, tags=["t"]), rec(x=1, tags=["t"])
     assert dataclasses.is_dataclass(b)
     assert [f.name for f in dataclasses.fields(b)] == [f.name for f in dataclasses.fields(a)]
@@ -106,8 +115,9 @@ def test_frozen_slotted_records_pickle_and_copy() -> None:
     assert not hasattr(span, "__dict__")
 
 
-def test_a_subclass_inherits_fields_and_defaults_alike() -> None:
-    dc, rec = both()
+@pytest.mark.parametrize("warm", [False, True])
+def test_a_subclass_inherits_fields_and_defaults_alike(warm: bool) -> None:
+    dc, rec = both(warm)
     made = []
     for decorate, base in ((dataclasses.dataclass, dc), (records.record, rec)):
         class Labelled(base):  # type: ignore[valid-type, misc]
@@ -118,6 +128,10 @@ def test_a_subclass_inherits_fields_and_defaults_alike() -> None:
     assert repr(a).replace("Labelled", "") == repr(b).replace("Labelled", "")
     assert [f.name for f in dataclasses.fields(b)] == ["x", "y", "tags", "label"]
     assert b.tags == [] and b.tags is not made[1](x=1).tags
+    for _ in range(records.HOT):
+        made[1](1, 2, ["t"], "q")  # its own __init__ too, apart from its base's
+    assert made[1](1, label="q") == made[1](x=1, y=2, tags=[], label="q")
+    assert made[1].__init__ is not rec.__init__
 
 
 def test_a_default_before_a_required_field_is_refused_alike() -> None:
@@ -131,6 +145,9 @@ def test_a_default_before_a_required_field_is_refused_alike() -> None:
 
 
 def test_models_stay_keyword_only_frozen_and_hashable() -> None:
+    for _ in range(records.HOT):  # with the model's own __init__ (and its __post_init__)
+        Literal(predicate="on", args=["a"])
+    assert Literal.__init__ is not records._init
     literal = Literal(predicate="on", args=["a", "b"])  # lists are stored as tuples
     assert literal.args == ("a", "b")
     assert literal == Literal(predicate="on", args=("a", "b"))
