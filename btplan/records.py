@@ -134,13 +134,12 @@ def build(cls: type[T], *, frozen: bool, slots: bool, kw_only: bool) -> type[T]:
     return cls
 
 
-HOT = 1000
+HOT = 256
 """Records a class makes with the shared `__init__` before it gets one of its own.
 Writing and compiling one takes about 0.12 ms and saves about 1 us a record (1.3 us
 against 0.2 for a report of two fields given), so it pays once a class has made some
-150 more; a class that made this many makes more (a goal set, a sweep, a long run).
-A `btplan plan` of a small problem reaches it with no class and compiles nothing
-(tests/cli/test_startup.py): the first compile of a process costs more."""
+150 more; a class that made this many usually makes far more (a goal set, a sweep, a
+long run), and a `btplan plan` of a small problem compiles one or none."""
 
 _made: dict[type, int] = {}
 
@@ -224,7 +223,8 @@ def _own_init(cls: type) -> Callable[..., None]:
     star = ["*"] if cls.__record_kw_only__ and names else []  # type: ignore[attr-defined]
     signature = ", ".join(["self", *star, *parameters])
     source = f"def __init__({signature}) -> None:\n" + "\n".join(body or ["    pass"])
-    exec(source, scope)  # noqa: S102 (our own text, from the class's field names)
+    code = compile(source, f"<record {cls.__qualname__}>", "exec")
+    exec(code, scope)  # noqa: S102 (our own text, from the class's field names)
     made: Callable[..., None] = scope["__init__"]
     made.__qualname__ = f"{cls.__qualname__}.__init__"
     made.__record_init__ = True  # type: ignore[attr-defined]
