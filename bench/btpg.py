@@ -55,7 +55,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
@@ -286,6 +286,24 @@ def btpg_half(python: str, source: Path, goals: GoalSet, timeout: float, repeat:
     return outcomes
 
 
+TIMES = ("seconds", "load_seconds", "goal_seconds", "plan_seconds", "fresh_seconds",
+         "cli_seconds", "cli_wall_seconds")
+"""The times of an outcome; every other field is the same in every round."""
+
+
+def fastest(rounds: Sequence[Sequence[Outcome]]) -> list[Outcome]:
+    """The first round's outcomes, each time the least the rounds measured for that
+    planner and goal: the halves ran in turn, so a spell of a slower machine falls on
+    both sides."""
+    first = rounds[0]
+    for out in first:
+        same = [o for r in rounds for o in r if (o.planner, o.index) == (out.planner, out.index)]
+        for name in TIMES:
+            values = [getattr(o, name) for o in same if getattr(o, name) is not None]
+            setattr(out, name, min(values) if values else None)
+    return list(first)
+
+
 def progress(out: Outcome) -> None:
     seconds = "-" if out.seconds is None else f"{1000 * out.seconds:.2f} ms"
     print(f"[{out.index:3}] {out.goal:<28} {out.planner:<12} "
@@ -437,11 +455,13 @@ def targets(outcomes: Sequence[Outcome], difficulty: str) -> list[str]:
     ]
 
 
-def report(goals: GoalSet, outcomes: Sequence[Outcome], timeout: float, repeat: int) -> str:
+def report(goals: GoalSet, outcomes: Sequence[Outcome], timeout: float, repeat: int,
+           rounds: int = 1) -> str:
     planners = [p for p in (*BTPG_PLANNERS, BTPLAN) if any(o.planner == p for o in outcomes)]
     distinct = len({g.name for g in goals.goals})
+    turns = f", in {rounds} rounds of both sides in turn," if rounds > 1 else ""
     lines = [f"{goals.name}: {len(goals.goals)} goals ({distinct} distinct), limit {timeout:g} s;"
-             f" time: best of {repeat} in-process calls after a warm-up (btplan: the problem"
+             f" time: best of {repeat} in-process calls{turns} after a warm-up (btplan: the problem"
              " read against the domain read once, and plan(); BTPG: process() on its scene"
              " built once); medians over the goals each planner solved", ""]
     lines += planner_table(outcomes, planners)
@@ -490,6 +510,9 @@ def main(argv: Sequence[str] | None = None) -> None:
                         help="the Python of BTPG's virtual environment")
     parser.add_argument("--timeout", type=float, default=10.0)
     parser.add_argument("--repeat", type=int, default=3, help="timed calls a goal; the best counts")
+    parser.add_argument("--rounds", type=int, default=3,
+                        help="rounds of both halves, in turn; each time is the least over "
+                             "the rounds (a shared machine's speed changes within minutes)")
     parser.add_argument("--first", type=int, help="only the first N goals")
     parser.add_argument("--no-cli", action="store_true",
                         help="skip the `btplan plan` process run for each goal")
@@ -499,12 +522,19 @@ def main(argv: Sequence[str] | None = None) -> None:
     parser.add_argument("--out", help="write one CSV row per goal and planner here")
     args = parser.parse_args(argv)
     goals = read_set(args.goal_set.resolve(), args.first)
-    outcomes: list[Outcome] = []
-    if args.btpg_src is not None:
-        outcomes += btpg_half(args.btpg_python, args.btpg_src.resolve(), goals, args.timeout,
-                              args.repeat, args.first, args.btpg_just_best)
-    outcomes += btplan_half(goals, args.timeout, args.repeat, not args.no_cli)
-    print(report(goals, outcomes, args.timeout, args.repeat))
+    rounds: list[list[Outcome]] = []
+    for number in range(args.rounds):
+        halves: list[Callable[[], list[Outcome]]] = [
+            lambda: btplan_half(goals, args.timeout, args.repeat, not args.no_cli and not number)]
+        if args.btpg_src is not None:
+            halves.append(lambda: btpg_half(args.btpg_python, args.btpg_src.resolve(), goals,
+                                            args.timeout, args.repeat, args.first,
+                                            args.btpg_just_best))
+        if number % 2 == 0:
+            halves.reverse()  # BTPG first, then btplan; the other way round next time
+        rounds.append([out for half in halves for out in half()])
+    outcomes = fastest(rounds)
+    print(report(goals, outcomes, args.timeout, args.repeat, args.rounds))
     if args.out:
         write_csv(args.out, outcomes, goals.name)
 

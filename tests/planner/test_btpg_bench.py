@@ -69,6 +69,19 @@ def test_the_target_compares_with_the_btpg_planner_of_lowest_median_time() -> No
     assert lines[1].split()[2:5] == ["BTExpansion", "1.00", "4.00"]
 
 
+def test_each_time_is_the_least_of_the_rounds_and_the_rest_the_first_rounds() -> None:
+    bench = _load("btpg")
+    o = bench.Outcome
+    first = [o("btplan", 0, "g", True, 0.004, goal_seconds=0.002, cli_seconds=0.01, plan_cost=10),
+             o("OBTEA", 0, "g", True, 0.001, plan_cost=10)]
+    second = [o("OBTEA", 0, "g", True, 0.003, plan_cost=10),
+              o("btplan", 0, "g", True, 0.003, goal_seconds=0.005, plan_cost=99)]
+    merged = {out.planner: out for out in bench.fastest([first, second])}
+    assert (merged["btplan"].seconds, merged["btplan"].goal_seconds) == (0.003, 0.002)
+    assert merged["btplan"].cli_seconds == 0.01  # the CLI runs in the first round only
+    assert merged["btplan"].plan_cost == 10 and merged["OBTEA"].seconds == 0.001
+
+
 def test_a_btpg_tree_is_counted_and_run_as_btpg_ticks_it() -> None:
     driver = _load("btpg_driver")
 
