@@ -42,7 +42,10 @@ class StuckWait:
         now = self.clock.now()
         if self.since is None:
             self.since, self.error = now, error
-        return now - self.since < self.seconds
+        if now - self.since < self.seconds:
+            return True
+        self.since = self.error = None  # over: what the run does next starts afresh
+        return False
 
     def after(self, status: Status) -> None:
         """A tick during the wait ended with `status`: the wait ends when the tree no

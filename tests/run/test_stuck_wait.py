@@ -9,9 +9,13 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
+import pytest
+
 import btplan
 from btplan.acting import ActingConfig, FakeClock
-from btplan.bt import SUCCESS, Status
+from btplan.acting.stuck_wait import StuckWait
+from btplan.bt import FAILURE, RUNNING, SUCCESS, Status
+from btplan.errors import NoAchieverError
 from btplan.robot import Robot
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -100,3 +104,20 @@ def test_a_dead_end_that_lasts_ends_the_run_once_the_wait_is_up() -> None:
     stuck_from = next(r.tick for r in outcome.records if r.status == "FAILURE")
     # ticks on for half a second (5 ticks; one more where the clock's sums round down)
     assert 0.5 * RATE <= outcome.ticks - stuck_from <= 0.5 * RATE + 1
+
+
+def test_the_wait_ends_with_a_tick_that_does_not_fail_or_with_its_time() -> None:
+    clock, error = FakeClock(), NoAchieverError("stuck")
+    wait = StuckWait(0.5, clock)
+    assert wait.holds(error)
+    clock.advance(0.3)
+    wait.after(FAILURE)  # still within the time
+    wait.after(RUNNING)  # the dead end passed: the wait is over
+    clock.advance(0.3)
+    assert wait.holds(error)  # a new dead end, a new wait
+    clock.advance(0.5)
+    with pytest.raises(NoAchieverError):
+        wait.after(FAILURE)
+    assert not wait.holds(error)  # over: the run ends (or plans offline) ...
+    assert wait.holds(error)  # ... and a later dead end gets its own wait
+    assert not StuckWait(0.5, None).holds(error)  # no clock: no wait
