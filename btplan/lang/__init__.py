@@ -26,8 +26,8 @@ if TYPE_CHECKING:
     from btplan.lang.report import InputErrors
 
 _HOMES = {"BtFile": "loader", "Collection": "loader", "collect": "loader", "load": "loader",
-          "load_domain": "loader", "load_problem": "loader", "parse_bt": "loader", "with_goal": "loader",
-          "InputErrors": "report"}
+          "load_domain": "loader", "load_problem": "loader", "parse_bt": "loader",
+          "with_goal": "loader", "InputErrors": "report"}
 
 
 def __getattr__(name: str) -> Any:

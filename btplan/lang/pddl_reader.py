@@ -335,7 +335,6 @@ def read_goal(text: str, path: str) -> tuple[LiteralSyntax, ...]:
     return _literals(goal, goal)
 
 
-
 def _problem(define: Group) -> ProblemSyntax:
     header = define.items[1]
     assert isinstance(header, Group)

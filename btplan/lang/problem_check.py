@@ -59,7 +59,6 @@ def build_problem(syntax: ProblemSyntax, domain: Domain, report: Report | None =
             )
         else:
             init.append(report.attempt(facts.check, lit, "initial fact"))
-    goal = [report.attempt(facts.check, lit, "goal") for lit in syntax.goal]
     terms = _FactChecker(types, {f.name: f for f in domain.functions}, known, unknown)
     values = []
     for term, number in syntax.values:
@@ -67,7 +66,7 @@ def build_problem(syntax: ProblemSyntax, domain: Domain, report: Report | None =
         if checked is not None:
             values.append(FunctionValue(
                 function=checked.predicate, args=checked.args, value=float(number.text)))
-    report.attempt(check_contradictions, syntax.goal, "goal conditions", "no state satisfies both")
+    goal = _checked_goal(syntax.goal, facts, report)
     _warn_unreachable(syntax.goal, init, domain, report)
     if own:
         report.raise_errors()
@@ -76,7 +75,7 @@ def build_problem(syntax: ProblemSyntax, domain: Domain, report: Report | None =
         domain=syntax.domain.text,
         objects=objects,
         init=tuple(dict.fromkeys(x for x in init if x is not None)),
-        goal=tuple(x for x in goal if x is not None),
+        goal=goal,
         values=tuple(values),
     )
 
@@ -87,6 +86,13 @@ def check_goal(goal: tuple[LiteralSyntax, ...], task: Task, report: Report) -> t
     known = dict(task.object_types)
     facts = _FactChecker(TypeTable.from_domain(task.domain), task.domain.predicate_map, known,
                          set())
+    return _checked_goal(goal, facts, report)
+
+
+def _checked_goal(goal: tuple[LiteralSyntax, ...], facts: _FactChecker, report: Report
+                  ) -> tuple[Literal, ...]:
+    """The goal's literals that pass `facts`; what does not, and literals that contradict
+    each other, go to `report`."""
     checked = [report.attempt(facts.check, lit, "goal") for lit in goal]
     report.attempt(check_contradictions, goal, "goal conditions", "no state satisfies both")
     return tuple(x for x in checked if x is not None)

@@ -242,12 +242,8 @@ class AchieverIndex:
             return left, bool(ranked) and not left
         kept: list[GroundAction] = []
         dropped: list[GroundAction] = []
-        disjoint = pursued.isdisjoint if isinstance(pursued, (set, frozenset)) else None
         for action in self._found(condition, state, refine):
-            # `circular`, in C when `pursued` is a set (expand.pursued gives one)
-            needs_pursued = (not disjoint(action.preconditions) if disjoint is not None
-                             else circular(action, pursued))
-            (dropped if needs_pursued else kept).append(action)
+            (dropped if circular(action, pursued) else kept).append(action)
         drop = self.options.mutexes
         ranked = self._best(kept, state, ALL, drop)
         if ranked or not dropped:

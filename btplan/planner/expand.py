@@ -207,7 +207,10 @@ def non_circular(achievers: Sequence[GroundAction], goals: Collection[GroundLite
 
 
 def circular(action: GroundAction, goals: Collection[GroundLiteral]) -> bool:
-    """Whether `action` needs a condition already being pursued above."""
+    """Whether `action` needs a condition already being pursued above (by a set's own
+    test, in C, when `goals` is one: `pursued` gives a set)."""
+    if isinstance(goals, (set, frozenset)):
+        return not goals.isdisjoint(action.preconditions)
     return any(p in goals for p in action.preconditions)
 
 

@@ -28,7 +28,8 @@ plan has steps."""
 
 
 def backchained_part(root: Node) -> Node | None:
-    """The backchained tree inside a tree btplan.acting.offline.improved.plan_first made, or None for any other tree.
+    """The backchained tree inside a tree that btplan.acting.offline.improved.plan_first
+    made, or None for any other tree.
 
     An acting run leaves the shorter plan once the world departs from it: the plan's
     steps, picked up again wherever one fits, would otherwise take turns with the

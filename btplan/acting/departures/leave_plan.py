@@ -18,9 +18,9 @@ An undisturbed run never gets there, and executes the plan as before.
 from __future__ import annotations
 
 from btplan.acting.hooks import Departure
-from btplan.planner.plan_first import backchained_part
 from btplan.acting.state import TickReport
 from btplan.bt import IDLE
+from btplan.planner.plan_first import backchained_part
 
 __all__ = ["LeavePlan"]
 
